@@ -1,0 +1,215 @@
+#include "config/yaml_section.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace fibrecell::config {
+namespace {
+
+std::string describe_value(const YAML::Node& n) {
+    if (n.IsScalar()) return "'" + n.Scalar() + "'";
+    if (n.IsSequence()) return "a list";
+    if (n.IsMap()) return "a mapping";
+    return "nothing";
+}
+
+template <class T>
+const char* type_name() {
+    if constexpr (std::is_same_v<T, bool>) return "true or false";
+    if constexpr (std::is_same_v<T, int>) return "a whole number";
+    if constexpr (std::is_same_v<T, double>) return "a number";
+    if constexpr (std::is_same_v<T, std::string>) return "a string";
+    if constexpr (std::is_same_v<T, std::vector<int>>) return "a list of whole numbers";
+    if constexpr (std::is_same_v<T, std::vector<double>>) return "a list of numbers";
+    if constexpr (std::is_same_v<T, std::vector<std::string>>) return "a list of strings";
+    return "a value of another type";
+}
+
+}  // namespace
+
+Section Section::load_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw ConfigError(path + ": cannot open file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return load_text(text.str(), path);
+}
+
+Section Section::load_text(const std::string& text, const std::string& origin) {
+    YAML::Node root;
+    try {
+        root = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+        throw ConfigError(origin + ": line " + std::to_string(e.mark.line + 1) +
+                          ": YAML syntax error: " + e.msg);
+    }
+    if (root && !root.IsNull() && !root.IsMap())
+        throw ConfigError(origin + ": the document must be a mapping of keys to values");
+    return Section(root, "", std::make_shared<const std::string>(origin));
+}
+
+Section::Section(YAML::Node node, std::string path, std::shared_ptr<const std::string> origin)
+    : node_(std::move(node)), path_(std::move(path)), origin_(std::move(origin)) {
+    if (node_ && !node_.IsNull() && !node_.IsMap())
+        fail_here("must be a mapping of keys to values, not " + describe_value(node_));
+}
+
+bool Section::has(std::string_view key) const {
+    return node_ && node_.IsMap() && node_[std::string(key)] &&
+           !node_[std::string(key)].IsNull();
+}
+
+std::string Section::key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+std::string Section::where(const YAML::Node& n) const {
+    std::string w = *origin_;
+    if (n && n.Mark().line >= 0) w += ": line " + std::to_string(n.Mark().line + 1);
+    return w;
+}
+
+void Section::fail(std::string_view key, const std::string& problem) const {
+    YAML::Node n = has(key) ? node_[std::string(key)] : node_;
+    throw ConfigError(where(n) + ": " + key_path(key) + ": " + problem);
+}
+
+void Section::fail_here(const std::string& problem) const {
+    throw ConfigError(where(node_) + ": " + (path_.empty() ? "document" : path_) + ": " + problem);
+}
+
+YAML::Node Section::child(std::string_view key, bool required) {
+    read_.emplace(key);
+    if (!has(key)) {
+        if (required) fail(key, "is required");
+        return YAML::Node();
+    }
+    return node_[std::string(key)];
+}
+
+template <class T>
+T Section::get(std::string_view key) {
+    YAML::Node n = child(key, true);
+    try {
+        if constexpr (std::is_same_v<T, std::vector<int>> || std::is_same_v<T, std::vector<double>> ||
+                      std::is_same_v<T, std::vector<std::string>>) {
+            if (!n.IsSequence()) throw YAML::BadConversion(n.Mark());
+        } else {
+            if (!n.IsScalar()) throw YAML::BadConversion(n.Mark());
+        }
+        T value = n.as<T>();
+        if constexpr (std::is_same_v<T, double>) {
+            if (!std::isfinite(value)) fail(key, "must be a finite number");
+        }
+        return value;
+    } catch (const YAML::Exception&) {
+        fail(key, std::string("must be ") + type_name<T>() + ", not " + describe_value(n));
+    }
+}
+
+template <class T>
+T Section::get_or(std::string_view key, T fallback) {
+    if (!has(key)) {
+        read_.emplace(key);
+        return fallback;
+    }
+    return get<T>(key);
+}
+
+template bool Section::get<bool>(std::string_view);
+template int Section::get<int>(std::string_view);
+template double Section::get<double>(std::string_view);
+template std::string Section::get<std::string>(std::string_view);
+template std::vector<int> Section::get<std::vector<int>>(std::string_view);
+template std::vector<double> Section::get<std::vector<double>>(std::string_view);
+template std::vector<std::string> Section::get<std::vector<std::string>>(std::string_view);
+template bool Section::get_or<bool>(std::string_view, bool);
+template int Section::get_or<int>(std::string_view, int);
+template double Section::get_or<double>(std::string_view, double);
+template std::string Section::get_or<std::string>(std::string_view, std::string);
+template std::vector<int> Section::get_or<std::vector<int>>(std::string_view, std::vector<int>);
+template std::vector<double> Section::get_or<std::vector<double>>(std::string_view,
+                                                                  std::vector<double>);
+template std::vector<std::string> Section::get_or<std::vector<std::string>>(
+    std::string_view, std::vector<std::string>);
+
+double Section::number(std::string_view key, double fallback, double min, double max,
+                       bool min_exclusive) {
+    const double v = get_or<double>(key, fallback);
+    const bool low = min_exclusive ? v <= min : v < min;
+    if (low || v > max) {
+        std::ostringstream msg;
+        msg << "must be in " << (min_exclusive ? "(" : "[") << min << ", " << max << "], got " << v;
+        fail(key, msg.str());
+    }
+    return v;
+}
+
+int Section::integer(std::string_view key, int fallback, int min, int max) {
+    const int v = get_or<int>(key, fallback);
+    if (v < min || v > max)
+        fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+                      std::to_string(v));
+    return v;
+}
+
+std::array<double, 3> Section::vec3(std::string_view key) {
+    const auto v = get<std::vector<double>>(key);
+    if (v.size() != 3) fail(key, "must be a list of 3 numbers [x, y, z]");
+    for (double c : v)
+        if (!std::isfinite(c)) fail(key, "must hold finite numbers");
+    return {v[0], v[1], v[2]};
+}
+
+std::array<double, 3> Section::vec3_or(std::string_view key, std::array<double, 3> fallback) {
+    if (!has(key)) {
+        read_.emplace(key);
+        return fallback;
+    }
+    return vec3(key);
+}
+
+std::string Section::choice(std::string_view key, std::string fallback,
+                            const std::vector<std::string>& allowed) {
+    std::string v = get_or<std::string>(key, std::move(fallback));
+    for (const auto& a : allowed)
+        if (a == v) return v;
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    fail(key, "must be one of " + list + ", got '" + v + "'");
+}
+
+Section Section::section(std::string_view key) {
+    return Section(child(key, false), key_path(key), origin_);
+}
+
+std::vector<Section> Section::sections(std::string_view key) {
+    YAML::Node n = child(key, false);
+    std::vector<Section> out;
+    if (!n) return out;
+    if (!n.IsSequence()) fail(key, "must be a list");
+    for (std::size_t i = 0; i < n.size(); ++i)
+        out.emplace_back(n[i], key_path(key) + "[" + std::to_string(i) + "]", origin_);
+    return out;
+}
+
+YAML::Node Section::node(std::string_view key) { return child(key, false); }
+
+std::vector<std::string> Section::keys() const {
+    std::vector<std::string> out;
+    if (!node_ || !node_.IsMap()) return out;
+    for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+    return out;
+}
+
+void Section::finish() const {
+    if (!node_ || !node_.IsMap()) return;
+    for (const auto& kv : node_) {
+        const std::string k = kv.first.as<std::string>();
+        if (!read_.contains(k))
+            throw ConfigError(where(kv.first) + ": " + key_path(k) + ": unknown key");
+    }
+}
+
+}  // namespace fibrecell::config

@@ -1,0 +1,19 @@
+#pragma once
+// The cell configuration (cell YAML): what the service needs before it can run. Each module
+// reads its own section; unknown keys and out-of-range values are rejected with the key path.
+
+#include <string>
+
+namespace fibrecell::daemon {
+
+struct CellConfig {
+    std::string name = "cell-1";                      // shown in status and logs
+    std::string log_level = "info";                   // trace|debug|info|warn|error|off
+    std::string state_dir = "/var/lib/fibrecelld";    // job folders live here
+    bool simulated = true;                            // simulated controller and mock board
+};
+
+// Loads and validates a cell YAML file; throws config::ConfigError naming the key.
+CellConfig load_cell_config(const std::string& path);
+
+}  // namespace fibrecell::daemon

@@ -1,0 +1,45 @@
+#pragma once
+// Progress and cancel for long planner steps, as plain callbacks: the geometry stays unaware of
+// threads. The service runs a step on a worker thread and cancels it from a socket command.
+
+#include <atomic>
+#include <functional>
+#include <stdexcept>
+#include <string_view>
+
+namespace fibrecell::planner {
+
+// Thrown by CancelToken::throw_if_cancelled; callers treat it as "stopped on request", not a failure.
+struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("planning cancelled") {}
+};
+
+class CancelToken {
+public:
+    void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
+    bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+    void throw_if_cancelled() const {
+        if (cancelled()) throw Cancelled();
+    }
+
+private:
+    std::atomic<bool> cancelled_{false};
+};
+
+// stage: stable stage name ("read", "fea", "mst_reorientation", ...); fraction in [0, 1].
+using ProgressSink = std::function<void(std::string_view stage, double fraction)>;
+
+// What a long step receives; both members may be left empty.
+struct StepControl {
+    ProgressSink progress;
+    const CancelToken* cancel = nullptr;
+
+    void report(std::string_view stage, double fraction) const {
+        if (progress) progress(stage, fraction);
+    }
+    void check_cancel() const {
+        if (cancel) cancel->throw_if_cancelled();
+    }
+};
+
+}  // namespace fibrecell::planner

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# fibrecell developer entry point: installs missing Debian packages, configures, builds, and
+# runs one of the two jobs a new user needs.
+#
+#   tools/setup.sh demo   build (Release) and run the bundled example
+#   tools/setup.sh test   build (sanitizers on) and run the whole test suite
+#   tools/setup.sh build  only install and build (Release)
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# Everything the project builds against, by Debian package name.
+packages=(
+    g++ cmake ninja-build pkg-config
+    libeigen3-dev libboost-dev libboost-graph-dev libsuitesparse-dev
+    libspdlog-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+    libmodbus-dev libsystemd-dev
+    libgtest-dev libgmock-dev
+)
+
+install_missing() {
+    local missing=()
+    for p in "${packages[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+            missing+=("$p")
+    done
+    [ ${#missing[@]} -eq 0 ] && return 0
+    echo "setup: installing ${missing[*]}"
+    local sudo=()
+    [ "$(id -u)" -eq 0 ] || sudo=(sudo)
+    "${sudo[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
+        "${missing[@]}" >/dev/null
+}
+
+# configure_and_build DIR [cmake args...]
+configure_and_build() {
+    local dir=$1
+    shift
+    cmake -S "$root" -B "$dir" -G Ninja "$@" >/dev/null
+    cmake --build "$dir" --parallel "$jobs"
+}
+
+release_dir="$root/build/release"
+test_dir="$root/build/test"
+
+case "${1:-demo}" in
+    build)
+        install_missing
+        configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
+        ;;
+    demo)
+        install_missing
+        configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
+        out="$root/out/loop"
+        "$release_dir/tools/fibrecell" plan "$root/examples/loop/loop.job.yaml" --out "$out" \
+            --stage field
+        ;;
+    test)
+        install_missing
+        configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+            -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF
+        cd "$test_dir"
+        ctest --output-on-failure --parallel "$jobs" --timeout 300
+        ;;
+    *)
+        echo "usage: tools/setup.sh [demo|test|build]" >&2
+        exit 2
+        ;;
+esac
