@@ -1,47 +1,31 @@
 #include "planner/mesh/boundary.hpp"
 
-#include <Eigen/Geometry>
+#include "planner/mesh/adjacency.hpp"
 
-#include <algorithm>
+#include <Eigen/Geometry>
 
 namespace fibrecell::planner {
 namespace {
 
-// Faces of a positively oriented tet (a,b,c,d), each counter-clockwise seen from outside.
+// Faces of a positively oriented tet, opposite local vertex f, counter-clockwise from outside.
 constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-struct FaceKey {
-    std::array<int, 3> sorted;
-    int tet;
-    int face;
-};
 
 }  // namespace
 
 std::vector<BoundaryTriangle> boundary_triangles(const TetMesh& mesh) {
-    std::vector<FaceKey> faces;
-    faces.reserve(mesh.tets.size() * 4);
+    return boundary_triangles(mesh, face_neighbours(mesh));
+}
+
+std::vector<BoundaryTriangle> boundary_triangles(const TetMesh& mesh,
+                                                 const FaceNeighbours& neighbours) {
+    std::vector<BoundaryTriangle> out;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         for (int f = 0; f < 4; ++f) {
-            std::array<int, 3> k = {mesh.tets[t][kFaces[f][0]], mesh.tets[t][kFaces[f][1]],
-                                    mesh.tets[t][kFaces[f][2]]};
-            std::sort(k.begin(), k.end());
-            faces.push_back({k, static_cast<int>(t), f});
+            if (neighbours[t][f] >= 0) continue;
+            const Tet& tet = mesh.tets[t];
+            out.push_back({{tet[kFaces[f][0]], tet[kFaces[f][1]], tet[kFaces[f][2]]},
+                           static_cast<int>(t)});
         }
-    }
-    std::sort(faces.begin(), faces.end(),
-              [](const FaceKey& a, const FaceKey& b) { return a.sorted < b.sorted; });
-
-    std::vector<BoundaryTriangle> out;
-    for (std::size_t i = 0; i < faces.size();) {
-        std::size_t j = i + 1;
-        while (j < faces.size() && faces[j].sorted == faces[i].sorted) ++j;
-        if (j - i == 1) {
-            const Tet& tet = mesh.tets[faces[i].tet];
-            const int* f = kFaces[faces[i].face];
-            out.push_back({{tet[f[0]], tet[f[1]], tet[f[2]]}, faces[i].tet});
-        }
-        i = j;
     }
     return out;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The boundary surface of a tet mesh: faces that belong to exactly one tet.
 
+#include "planner/mesh/adjacency.hpp"
 #include "planner/mesh/tet_mesh.hpp"
 
 #include <array>
@@ -15,6 +16,9 @@ struct BoundaryTriangle {
 
 // Returns the boundary triangles of `mesh`, outward oriented. O(#T log #T).
 std::vector<BoundaryTriangle> boundary_triangles(const TetMesh& mesh);
+// The same from face neighbours already computed.
+std::vector<BoundaryTriangle> boundary_triangles(const TetMesh& mesh,
+                                                 const FaceNeighbours& neighbours);
 
 // Area of a boundary triangle [mm^2].
 double triangle_area(const TetMesh& mesh, const BoundaryTriangle& t);

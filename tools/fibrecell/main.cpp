@@ -1,5 +1,6 @@
 // fibrecell: the operator's command-line client.
 
+#include "config/logging.hpp"
 #include "tools/fibrecell/plan_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -7,8 +8,12 @@
 int main(int argc, char** argv) {
     CLI::App app{"fibrecell - plan and print continuous-fibre parts"};
     app.require_subcommand(1);
+    bool verbose = false;
+    app.add_flag("-v,--verbose", verbose, "log planner details to stderr");
     int exit_code = 0;
     fibrecell::tools::add_plan_command(app, exit_code);
+    app.parse_complete_callback(
+        [&] { fibrecell::config::setup_logging(verbose ? "info" : "warn"); });
     CLI11_PARSE(app, argc, argv);
     return exit_code;
 }

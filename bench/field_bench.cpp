@@ -1,0 +1,161 @@
+// Benchmark of the 3D vector-field stage (paper Section 4.1, Table 1) on parts of the paper's
+// sizes: FEA solve, reading the stressed mesh back from ASCII VTK, principal stresses, MST
+// re-orientation and incompatibility removal. Also measures the fraction of elements each
+// reading of Eq. 2 removes on the reference data. Run from a Release build:
+//   build/release/bench/field_bench [--reference ../shared/data/reference-fea]
+
+#include "planner/fea/linear_elastic.hpp"
+#include "planner/field/incompatibility.hpp"
+#include "planner/field/mst_reorientation.hpp"
+#include "planner/field/tensile_field.hpp"
+#include "planner/io/read_model.hpp"
+#include "planner/io/vtk_writer.hpp"
+#include "planner/mesh/adjacency.hpp"
+#include "planner/mesh/boundary.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+#include "planner/plan/stopwatch.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+using namespace fibrecell::planner;
+
+namespace {
+
+// The paper's Table 1 (i7-9750H, 6 cores): tets, MST re-orientation [s], incompatibility [s].
+struct PaperRow {
+    const char* model;
+    int tets;
+    double mst_s;
+    double removal_s;
+};
+constexpr PaperRow kPaper[] = {{"Wrench", 14002, 2.883, 0.329},
+                               {"Loop", 32473, 17.684, 0.810},
+                               {"Piston", 85558, 215.88, 2.501},
+                               {"Shell", 112080, 400.683, 3.262}};
+
+// A Loop-like plate (140 x 100 x 10 mm, central opening, two pin holes) meshed with about
+// `target_tets` structured tets.
+TetMesh loop_like_plate(int target_tets) {
+    auto keep = [](const Eigen::Vector3d& c) {
+        const double ox = std::max(0.0, std::abs(c.x() - 70.0) - 15.0);  // 70 x 40 stadium
+        const bool in_opening = std::hypot(ox, c.y() - 50.0) < 20.0;
+        const bool in_pin = std::hypot(c.x() - 15.0, c.y() - 50.0) < 6.0 ||
+                            std::hypot(c.x() - 125.0, c.y() - 50.0) < 6.0;
+        return !in_opening && !in_pin;
+    };
+    const double kept_fraction = 0.77;  // area left after the opening and the holes
+    const double h = std::cbrt(6.0 * kept_fraction * 140.0 * 100.0 * 10.0 / target_tets);
+    StructuredMeshOptions o;
+    o.size = {140, 100, 10};
+    o.cells = {static_cast<int>(std::lround(140 / h)), static_cast<int>(std::lround(100 / h)),
+               std::max(1, static_cast<int>(std::lround(10 / h)))};
+    o.keep_cell = keep;
+    return structured_tet_mesh(o);
+}
+
+// Clamped at x = 0, pulled with 2 kN at x = 140.
+LoadCase end_load(const TetMesh& mesh) {
+    const auto boundary = boundary_triangles(mesh);
+    LoadCase lc;
+    FixedRegion fixed{"x0", {}};
+    ForceRegion pull{"x140", {}, Eigen::Vector3d(2000, 0, 0)};
+    for (const auto& t : boundary) {
+        bool at0 = true, at140 = true;
+        for (int v : t.v) {
+            at0 = at0 && mesh.vertices[v].x() < 1e-9;
+            at140 = at140 && mesh.vertices[v].x() > 140 - 1e-9;
+        }
+        if (at0) fixed.vertices.insert(fixed.vertices.end(), t.v.begin(), t.v.end());
+        if (at140) pull.triangles.push_back(t);
+    }
+    lc.supports.push_back(fixed);
+    lc.loads.push_back(pull);
+    return lc;
+}
+
+struct FieldTimes {
+    double principal = 0, mst = 0, removal = 0;
+    double removed_all = 0, removed_any = 0;  // fractions under the two readings of Eq. 2
+};
+
+FieldTimes run_field(const TetMesh& mesh, const std::vector<StressTensor>& stress) {
+    FieldTimes t;
+    Stopwatch clock;
+    TensileField field = tensile_field(stress);
+    t.principal = clock.lap();
+    const FaceNeighbours faces = face_neighbours(mesh);
+    mst_reorient(field.v_e, field.sigma_e, faces);
+    t.mst = clock.lap();
+    const CsrGraph around = vertex_sharing_neighbours(mesh);
+    const auto defined = compatible_directions(field.v_e, around);
+    t.removal = clock.lap();
+    auto fraction = [](const std::vector<std::uint8_t>& d) {
+        return static_cast<double>(std::count(d.begin(), d.end(), 0)) / static_cast<double>(d.size());
+    };
+    t.removed_all = fraction(defined);
+    t.removed_any = fraction(compatible_directions(field.v_e, around,
+                                                   {0.5, IncompatibilityRule::any_neighbour}));
+    return t;
+}
+
+void bench_sizes() {
+    std::printf("Vector-field stage on Loop-like plates of the paper's sizes (seconds; paper: "
+                "i7-9750H, 6 cores)\n\n");
+    std::printf("%-7s %7s | %6s %6s %6s %6s | %7s %8s %7s | %7s %7s %6s | %7s\n", "paper", "tets",
+                "fea", "vtk MB", "read", "princ.", "MST", "paper", "ratio", "removal", "paper",
+                "ratio", "p+r");
+    for (const PaperRow& row : kPaper) {
+        const TetMesh mesh = loop_like_plate(row.tets);
+        Stopwatch clock;
+        const FeaResult fea = solve_linear_elastic(mesh, end_load(mesh));
+        const double fea_s = clock.lap();
+
+        const std::string path = (std::filesystem::temp_directory_path() /
+                                  ("fibrecell-bench-" + std::to_string(row.tets) + ".vtk")).string();
+        write_field_vtk(path, mesh, {.stress = &fea.stress}, VtkEncoding::ascii);
+        const double mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
+        clock.lap();
+        const VolumeModel back = read_volume_model(path);
+        const double read_s = clock.lap();
+        std::filesystem::remove(path);
+
+        const FieldTimes t = run_field(back.mesh, *back.stress);
+        std::printf("%-7s %7zu | %6.3f %6.1f %6.3f %6.3f | %7.4f %8.3f %6.0fx | %7.4f %7.3f %5.0fx | "
+                    "%7.4f\n",
+                    row.model, mesh.tet_count(), fea_s, mb, read_s, t.principal, t.mst, row.mst_s,
+                    row.mst_s / t.mst, t.removal, row.removal_s, row.removal_s / t.removal,
+                    t.principal + t.removal);
+    }
+}
+
+void bench_reference(const std::string& dir) {
+    std::printf("\nReference data (%s): read and Eq. 2 removal fractions\n\n", dir.c_str());
+    std::printf("%-10s %7s | %6s %6s %7s %7s | %9s %9s\n", "model", "tets", "read", "princ.", "MST",
+                "removal", "rule all", "rule any");
+    for (const char* name : {"bunnyhead", "YogaNew"}) {
+        const std::string base = dir + "/" + name + "/" + name;
+        if (!std::filesystem::exists(base + ".tet")) continue;
+        Stopwatch clock;
+        const VolumeModel m = read_volume_model(base + ".tet", base + "_stress.txt");
+        const double read_s = clock.lap();
+        const FieldTimes t = run_field(m.mesh, *m.stress);
+        std::printf("%-10s %7zu | %6.3f %6.3f %7.4f %7.4f | %8.2f%% %8.2f%%\n", name,
+                    m.mesh.tet_count(), read_s, t.principal, t.mst, t.removal,
+                    100 * t.removed_all, 100 * t.removed_any);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string reference = FIBRECELL_SHARED_DIR "/data/reference-fea";
+    for (int i = 1; i + 1 < argc; ++i)
+        if (std::string(argv[i]) == "--reference") reference = argv[i + 1];
+    bench_sizes();
+    bench_reference(reference);
+    return 0;
+}

@@ -1,0 +1,218 @@
+#include "planner/job/job_spec.hpp"
+
+#include "config/yaml_section.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fibrecell::planner {
+namespace fs = std::filesystem;
+using config::Section;
+
+namespace {
+
+constexpr double kBig = 1e9;  // an upper bound for values with no natural limit
+
+Eigen::Vector3d to_vector(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::string resolve_file(Section& s, std::string_view key, const std::string& base_dir) {
+    const std::string raw = s.get<std::string>(key);
+    fs::path p(raw);
+    if (p.is_relative()) p = fs::path(base_dir) / p;
+    if (!fs::is_regular_file(p)) s.fail(key, "file not found: " + p.string());
+    return p.lexically_normal().string();
+}
+
+Region read_region(const std::string& name, Section s) {
+    Region r{name, GroupRegion{}};
+    const int kinds = s.has("box") + s.has("cylinder") + s.has("group");
+    if (kinds != 1) s.fail_here("must have exactly one of box, cylinder, group");
+    if (s.has("box")) {
+        Section b = s.section("box");
+        BoxRegion box{to_vector(b.vec3("min")), to_vector(b.vec3("max"))};
+        if ((box.min.array() > box.max.array()).any()) b.fail("max", "must not be below min");
+        b.finish();
+        r.shape = box;
+    } else if (s.has("cylinder")) {
+        Section c = s.section("cylinder");
+        CylinderRegion cyl;
+        cyl.point = to_vector(c.vec3("point"));
+        cyl.axis = to_vector(c.vec3_or("axis", {0, 0, 1}));
+        if (cyl.axis.norm() < 1e-12) c.fail("axis", "must not be the zero vector");
+        cyl.axis.normalize();
+        cyl.radius_mm = c.number("radius_mm", 0, 0, kBig, true);
+        cyl.tolerance_mm = c.number("tolerance_mm", 0.1, 0, kBig);
+        c.finish();
+        r.shape = cyl;
+    } else {
+        r.shape = GroupRegion{s.get<std::string>("group")};
+    }
+    s.finish();
+    return r;
+}
+
+LoadCaseSpec read_load_case(Section s) {
+    LoadCaseSpec lc;
+    Section m = s.section("material");
+    lc.youngs_modulus_mpa = m.number("youngs_modulus_mpa", lc.youngs_modulus_mpa, 0, kBig, true);
+    lc.poisson_ratio = m.number("poisson_ratio", lc.poisson_ratio, -0.99, 0.49);
+    m.finish();
+    lc.supports = s.get<std::vector<std::string>>("supports");
+    if (lc.supports.empty()) s.fail("supports", "needs at least one region (the part must be held)");
+    for (Section l : s.sections("loads")) {
+        LoadSpec load{l.get<std::string>("region"), to_vector(l.vec3("force_n"))};
+        l.finish();
+        lc.loads.push_back(load);
+    }
+    if (lc.loads.empty()) s.fail("loads", "needs at least one load");
+    s.finish();
+    return lc;
+}
+
+LayerScheduleSpec read_layers(Section s) {
+    LayerScheduleSpec l;
+    l.pla_layer_height_mm = s.number("pla_layer_height_mm", l.pla_layer_height_mm, 0.01, 5, false);
+    l.ccf_layer_height_mm = s.number("ccf_layer_height_mm", l.ccf_layer_height_mm, 0.001, 1);
+    const YAML::Node n = s.node("ccf_after_pla");
+    if (!n || n.IsNull()) {
+        // absent: the default, a CCF layer on every PLA layer
+    } else if (n.IsScalar()) {
+        const std::string word = n.Scalar();
+        if (word != "all" && word != "none")
+            s.fail("ccf_after_pla", "must be all, none, a list of PLA layer numbers, or "
+                                    "{every: N, first: K}; got '" + word + "'");
+        l.ccf_on_all = word == "all";
+    } else if (n.IsSequence()) {
+        l.ccf_on_all = false;
+        l.ccf_after_pla = s.get<std::vector<int>>("ccf_after_pla");
+        for (int i : l.ccf_after_pla)
+            if (i < 1) s.fail("ccf_after_pla", "PLA layer numbers start at 1, got " +
+                                                   std::to_string(i));
+        std::sort(l.ccf_after_pla.begin(), l.ccf_after_pla.end());
+    } else {
+        Section e = s.section("ccf_after_pla");
+        l.ccf_on_all = false;
+        l.ccf_every = e.integer("every", 1, 1, 100000);
+        l.ccf_first = e.integer("first", 1, 1, 100000);
+        e.finish();
+    }
+    s.finish();
+    return l;
+}
+
+PlannerSpec read_planner(Section s) {
+    PlannerSpec p;
+    const std::string strategy = s.choice("strategy", "field", {"field", "contour-zigzag"});
+    p.strategy = strategy == "field" ? Strategy::field : Strategy::contour_zigzag;
+    p.mu = s.number("mu", p.mu, 0, kBig, true);
+    p.eta = s.number("eta", p.eta, -1, 1);
+    p.incompatibility_rule = s.choice("incompatibility_rule", "all", {"all", "any"}) == "all"
+                                 ? IncompatibilityRule::all_neighbours
+                                 : IncompatibilityRule::any_neighbour;
+    p.p = s.number("p", p.p, 0, 10);
+    p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
+    p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);
+    p.cutter_distance_mm = s.number("cutter_distance_mm", p.cutter_distance_mm, 0, 10000);
+    s.finish();
+    return p;
+}
+
+HeadProcessSpec read_head(Section s, HeadProcessSpec h) {
+    h.speed_mm_s = s.number("speed_mm_s", h.speed_mm_s, 0, 1000, true);
+    h.travel_speed_mm_s = s.number("travel_speed_mm_s", h.travel_speed_mm_s, 0, 1000, true);
+    h.nozzle_temp_c = s.number("nozzle_temp_c", h.nozzle_temp_c, 0, 400);
+    h.line_width_mm = s.number("line_width_mm", h.line_width_mm, 0.05, 20, false);
+    h.nozzle_diameter_mm = s.number("nozzle_diameter_mm", h.nozzle_diameter_mm, 0.05, 5);
+    s.finish();
+    return h;
+}
+
+void check_region_names(Section& s, std::string_view key, const std::vector<std::string>& names,
+                        const JobSpec& job) {
+    for (const auto& n : names)
+        if (!job.find_region(n)) s.fail(key, "names region '" + n + "', which `regions` does not define");
+}
+
+}  // namespace
+
+bool LayerScheduleSpec::has_ccf_after(int pla_layer) const {
+    if (ccf_on_all) return true;
+    if (ccf_every > 0) return pla_layer >= ccf_first && (pla_layer - ccf_first) % ccf_every == 0;
+    return std::binary_search(ccf_after_pla.begin(), ccf_after_pla.end(), pla_layer);
+}
+
+std::string_view to_string(Strategy s) {
+    return s == Strategy::field ? "field" : "contour-zigzag";
+}
+
+const Region* JobSpec::find_region(const std::string& region_name) const {
+    for (const auto& r : regions)
+        if (r.name == region_name) return &r;
+    return nullptr;
+}
+
+JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
+                  const std::string& base_dir) {
+    Section root = Section::load_text(yaml_text, origin);
+    if (root.is_null()) root.fail_here("is empty");
+    JobSpec job;
+    job.job_file = origin;
+    job.name = root.get<std::string>("name");
+    if (job.name.empty()) root.fail("name", "must not be empty");
+
+    Section regions = root.section("regions");
+    for (const std::string& name : regions.keys())
+        job.regions.push_back(read_region(name, regions.section(name)));
+    regions.finish();
+
+    Section model = root.section("model");
+    if (model.is_null()) root.fail("model", "is required");
+    job.model.mesh_path = resolve_file(model, "mesh", base_dir);
+    if (model.has("stress")) job.model.stress_path = resolve_file(model, "stress", base_dir);
+    if (model.has("load_case")) {
+        if (!job.model.stress_path.empty())
+            model.fail("load_case", "give either a stress file or a load case, not both");
+        Section lc = model.section("load_case");
+        job.model.load_case = read_load_case(lc);
+        check_region_names(lc, "supports", job.model.load_case->supports, job);
+        for (const auto& load : job.model.load_case->loads)
+            if (!job.find_region(load.region))
+                lc.fail("loads", "names region '" + load.region +
+                                     "', which `regions` does not define");
+    }
+    model.finish();
+
+    Section placement = root.section("placement");
+    job.placement.rotate_deg = to_vector(placement.vec3_or("rotate_deg", {0, 0, 0}));
+    const auto pos = placement.get_or<std::vector<double>>("position_mm", {150.0, 150.0});
+    if (pos.size() != 2) placement.fail("position_mm", "must be a list of 2 numbers [x, y]");
+    job.placement.position_mm = {pos[0], pos[1]};
+    placement.finish();
+
+    job.layers = read_layers(root.section("layers"));
+    job.planner = read_planner(root.section("planner"));
+
+    job.boundary_fibre_regions = root.get_or<std::vector<std::string>>("boundary_fibres", {});
+    check_region_names(root, "boundary_fibres", job.boundary_fibre_regions, job);
+
+    Section process = root.section("process");
+    job.process.pla = read_head(process.section("pla"), job.process.pla);
+    job.process.ccf = read_head(process.section("ccf"), job.process.ccf);
+    process.finish();
+
+    root.finish();
+    return job;
+}
+
+JobSpec load_job_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw config::ConfigError(path + ": cannot open job file");
+    std::stringstream text;
+    text << in.rdbuf();
+    const fs::path dir = fs::absolute(fs::path(path)).parent_path();
+    return parse_job(text.str(), path, dir.string());
+}
+
+}  // namespace fibrecell::planner

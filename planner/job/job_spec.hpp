@@ -1,0 +1,103 @@
+#pragma once
+// A print job as the planner sees it: the typed form of the job YAML (docs/job-format.md).
+// Defaults are the paper's (Table 2 and Section 4); units are in the names.
+
+#include "planner/field/incompatibility.hpp"
+#include "planner/mesh/region.hpp"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct LoadSpec {
+    std::string region;       // name of a region in JobSpec::regions
+    Eigen::Vector3d force_n;  // total force on the region [N], in the model frame
+};
+
+// A load case for the built-in FEA, used when the model carries no stress.
+struct LoadCaseSpec {
+    double youngs_modulus_mpa = 3500.0;  // PLA
+    double poisson_ratio = 0.36;
+    std::vector<std::string> supports;   // regions fixed in all three directions
+    std::vector<LoadSpec> loads;
+};
+
+struct ModelSpec {
+    std::string mesh_path;                  // absolute, resolved against the job file's folder
+    std::string stress_path;                // optional per-element stress text file ("" = none)
+    std::optional<LoadCaseSpec> load_case;  // optional; exclusive with stress_path
+};
+
+// Where the part sits on the bed: rotated about x, then y, then z, then moved so that its lowest
+// point is on the bed (z = 0) and its bounding-box centre is at position_mm.
+struct PlacementSpec {
+    Eigen::Vector3d rotate_deg = Eigen::Vector3d::Zero();
+    Eigen::Vector2d position_mm = Eigen::Vector2d(150.0, 150.0);
+};
+
+struct LayerScheduleSpec {
+    double pla_layer_height_mm = 0.8;
+    double ccf_layer_height_mm = 0.05;
+    // Which PLA layers (1-based) get a CCF layer on top. Empty with ccf_on_all = false: none.
+    bool ccf_on_all = true;
+    std::vector<int> ccf_after_pla;  // explicit list, when not all
+    int ccf_every = 0;               // > 0: every n-th PLA layer starting at ccf_first
+    int ccf_first = 1;
+
+    bool has_ccf_after(int pla_layer) const;  // pla_layer is 1-based
+};
+
+enum class Strategy { field, contour_zigzag };
+std::string_view to_string(Strategy s);
+
+struct PlannerSpec {
+    Strategy strategy = Strategy::field;
+    double mu = 3.0;                 // rule-2 threshold |sigma_1 / sigma_2| < mu
+    double eta = 0.5;                // incompatibility threshold (Eq. 2)
+    IncompatibilityRule incompatibility_rule = IncompatibilityRule::all_neighbours;
+    double p = 1.0;                  // density exponent of u_f = sigma^p v/|v| (Eq. 5)
+    double fibre_spacing_mm = 1.0;   // W: minimal spacing between fibre paths
+    int smoothing_iterations = 50;   // local Laplacian smoothing per layer
+    double cutter_distance_mm = 42;  // cutter to nozzle tip: shorter paths cannot be laid
+};
+
+struct HeadProcessSpec {
+    double speed_mm_s;         // printing speed
+    double travel_speed_mm_s;  // moves without material
+    double nozzle_temp_c;
+    double line_width_mm;      // deposited line (PLA) or ribbon (CCF) width
+    double nozzle_diameter_mm;
+};
+
+struct ProcessSpec {
+    HeadProcessSpec pla{12.0, 60.0, 200.0, 0.8, 0.8};
+    HeadProcessSpec ccf{5.0, 60.0, 250.0, 1.2, 1.0};
+};
+
+struct JobSpec {
+    std::string name;
+    std::string job_file;  // where it was read from (for messages)
+    ModelSpec model;
+    std::vector<Region> regions;
+    PlacementSpec placement;
+    LayerScheduleSpec layers;
+    PlannerSpec planner;
+    std::vector<std::string> boundary_fibre_regions;
+    ProcessSpec process;
+
+    const Region* find_region(const std::string& name) const;
+};
+
+// Reads and validates a job file; relative paths resolve against its folder. Throws
+// config::ConfigError naming the file, line and key path on any problem.
+JobSpec load_job_file(const std::string& path);
+
+// The same from text (jobs submitted over the socket carry their YAML inline).
+JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
+                  const std::string& base_dir);
+
+}  // namespace fibrecell::planner

@@ -1,0 +1,113 @@
+#include "planner/plan/field_stage.hpp"
+
+#include "planner/fea/linear_elastic.hpp"
+#include "planner/field/incompatibility.hpp"
+#include "planner/io/read_model.hpp"
+#include "planner/mesh/adjacency.hpp"
+#include "planner/mesh/boundary.hpp"
+#include "planner/plan/stopwatch.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace fibrecell::planner {
+namespace {
+
+// Builds the FEA load case from the job's regions: supports fix the vertices of the boundary
+// triangles inside them, loads spread over the triangles inside them.
+LoadCase make_load_case(const JobSpec& job, const VolumeModel& model,
+                        const std::vector<BoundaryTriangle>& boundary) {
+    const LoadCaseSpec& spec = *job.model.load_case;
+    LoadCase lc;
+    lc.material = {spec.youngs_modulus_mpa, spec.poisson_ratio};
+    auto triangles_of = [&](const std::string& name, const char* use) {
+        const Region* region = job.find_region(name);
+        auto tris = select_triangles(model, boundary, *region);
+        if (tris.empty())
+            throw std::invalid_argument("region '" + name + "' (" + use +
+                                        ") selects no boundary triangle of the mesh");
+        return tris;
+    };
+    for (const auto& name : spec.supports)
+        lc.supports.push_back({name, triangle_vertices(triangles_of(name, "support"))});
+    for (const auto& load : spec.loads)
+        lc.loads.push_back({load.region, triangles_of(load.region, "load"), load.force_n});
+    return lc;
+}
+
+FeaSummary summarise(const FeaResult& r, const LoadCase& lc) {
+    FeaSummary s;
+    s.dof_count = r.dof_count;
+    s.solver = r.solver;
+    for (const auto& d : r.displacement) s.max_displacement_mm = std::max(s.max_displacement_mm, d.norm());
+    for (const auto& f : r.reaction) s.reaction_sum_n += f;
+    for (const auto& l : lc.loads) s.applied_sum_n += l.total_force_n;
+    return s;
+}
+
+}  // namespace
+
+FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control) {
+    FieldStageResult out;
+    Stopwatch clock;
+
+    control.report("read", 0.0);
+    out.model = read_volume_model(job.model.mesh_path, job.model.stress_path);
+    out.timings.read = clock.lap();
+    spdlog::info("plan.read {} vertices, {} tets from {} in {:.3f} s", out.model.mesh.vertex_count(),
+                 out.model.mesh.tet_count(), job.model.mesh_path, out.timings.read);
+    control.check_cancel();
+
+    const FaceNeighbours faces = face_neighbours(out.model.mesh);
+    if (job.model.load_case) {
+        control.report("fea", 0.0);
+        const LoadCase lc = make_load_case(job, out.model, boundary_triangles(out.model.mesh, faces));
+        const FeaResult fea = solve_linear_elastic(out.model.mesh, lc, {}, control);
+        out.model.stress = fea.stress;
+        out.fea = summarise(fea, lc);
+        out.timings.fea = clock.lap();
+        spdlog::info("plan.fea {} unknowns solved with {} in {:.3f} s", fea.dof_count, fea.solver,
+                     out.timings.fea);
+    } else if (!out.model.stress) {
+        throw std::invalid_argument(job.model.mesh_path +
+                                    ": the model carries no stress field and the job gives neither "
+                                    "model.stress nor model.load_case");
+    }
+    control.check_cancel();
+
+    control.report("principal", 0.0);
+    out.field = tensile_field(*out.model.stress, {job.planner.mu});
+    out.timings.principal = clock.lap();
+
+    out.mst = mst_reorient(out.field.v_e, out.field.sigma_e, faces, control);
+    out.timings.mst_reorientation = clock.lap();
+
+    control.report("incompatible_removal", 0.0);
+    const CsrGraph around = vertex_sharing_neighbours(out.model.mesh);
+    IncompatibilityOptions removal{job.planner.eta, job.planner.incompatibility_rule};
+    out.v_defined = compatible_directions(out.field.v_e, around, removal);
+    out.removed = static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
+    out.timings.incompatible_removal = clock.lap();
+
+    // The other reading of Eq. 2, measured for the report (not timed as part of the stage).
+    removal.rule = removal.rule == IncompatibilityRule::all_neighbours
+                       ? IncompatibilityRule::any_neighbour
+                       : IncompatibilityRule::all_neighbours;
+    const auto other = compatible_directions(out.field.v_e, around, removal);
+    out.removed_fraction_other_rule =
+        static_cast<double>(std::count(other.begin(), other.end(), 0)) /
+        static_cast<double>(std::max<std::size_t>(1, other.size()));
+    clock.lap();
+
+    out.timings.total = clock.elapsed();
+    spdlog::info("plan.field mst {:.3f} s ({} components, {} flipped), removal {:.3f} s "
+                 "({} of {} undefined, rule {})",
+                 out.timings.mst_reorientation, out.mst.components, out.mst.flipped,
+                 out.timings.incompatible_removal, out.removed, out.v_defined.size(),
+                 to_string(job.planner.incompatibility_rule));
+    return out;
+}
+
+}  // namespace fibrecell::planner

@@ -1,0 +1,72 @@
+#include "planner/plan/report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace fibrecell::planner {
+
+nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r) {
+    using nlohmann::json;
+    const auto& f = r.field;
+    std::size_t by_rule[3] = {0, 0, 0};
+    for (auto rule : f.rule) ++by_rule[static_cast<int>(rule)];
+    const double n = static_cast<double>(std::max<std::size_t>(1, f.v_e.size()));
+    const double sigma_max =
+        f.sigma_e.empty() ? 0.0 : *std::max_element(f.sigma_e.begin(), f.sigma_e.end());
+
+    json report = {
+        {"format", "fibrecell.report/1"},
+        {"job", job.name},
+        {"stage", "field"},
+        {"strategy", to_string(job.planner.strategy)},
+        {"model",
+         {{"file", job.model.mesh_path},
+          {"tets", r.model.mesh.tet_count()},
+          {"vertices", r.model.mesh.vertex_count()},
+          {"stress_source", r.fea ? "fea" : "file"}}},
+        {"field",
+         {{"sigma_e_max_mpa", sigma_max},
+          {"rule_first_principal", by_rule[0]},
+          {"rule_second_principal", by_rule[1]},
+          {"rule_no_tension", by_rule[2]},
+          {"mst_components", r.mst.components},
+          {"mst_flipped", r.mst.flipped},
+          {"incompatibility_rule", to_string(job.planner.incompatibility_rule)},
+          {"eta", job.planner.eta},
+          {"v_undefined", r.removed},
+          {"v_undefined_fraction", static_cast<double>(r.removed) / n},
+          {"v_undefined_fraction_other_rule", r.removed_fraction_other_rule}}},
+        {"timings_s",
+         {{"read", r.timings.read},
+          {"fea", r.timings.fea},
+          {"principal", r.timings.principal},
+          {"mst_reorientation", r.timings.mst_reorientation},
+          {"incompatible_removal", r.timings.incompatible_removal},
+          {"total", r.timings.total}}},
+    };
+    if (r.fea) {
+        const auto& s = *r.fea;
+        report["fea"] = {{"unknowns", s.dof_count},
+                         {"solver", s.solver},
+                         {"max_displacement_mm", s.max_displacement_mm},
+                         {"applied_force_n", {s.applied_sum_n.x(), s.applied_sum_n.y(), s.applied_sum_n.z()}},
+                         {"reaction_force_n",
+                          {s.reaction_sum_n.x(), s.reaction_sum_n.y(), s.reaction_sum_n.z()}}};
+    }
+    return report;
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& value) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp);
+        out << value.dump(2) << "\n";
+        if (!out.flush()) throw std::runtime_error(tmp + ": cannot write");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw std::runtime_error(path + ": cannot replace the file");
+}
+
+}  // namespace fibrecell::planner

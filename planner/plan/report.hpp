@@ -1,0 +1,20 @@
+#pragma once
+// report.json of the plan directory (format fibrecell.report/1, keys in contracts.md).
+
+#include "planner/job/job_spec.hpp"
+#include "planner/plan/field_stage.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace fibrecell::planner {
+
+// The report of a plan that ran the field stage: model.*, fea.*, field.* and timings_s.*.
+nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& result);
+
+// Writes `value` to `path` through a temporary file and a rename, so that a reader never sees a
+// half-written report. Throws std::runtime_error naming the path.
+void write_json_file(const std::string& path, const nlohmann::json& value);
+
+}  // namespace fibrecell::planner

@@ -1,0 +1,73 @@
+#include "config/yaml_section.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+using fibrecell::config::ConfigError;
+using fibrecell::config::Section;
+using ::testing::HasSubstr;
+
+namespace {
+
+// Runs `read` on the text and returns the error message it throws ("" if none).
+template <class F>
+std::string error_of(const std::string& text, F read) {
+    try {
+        Section s = Section::load_text(text, "cell.yaml");
+        read(s);
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(YamlSection, ReadsTypedValuesWithDefaults) {
+    Section s = Section::load_text("a: 3\nb: 2.5\nc: text\nd: [1, 2, 3]\ne: {x: true}\n", "t.yaml");
+    EXPECT_EQ(s.get<int>("a"), 3);
+    EXPECT_DOUBLE_EQ(s.number("b", 0, 0, 10), 2.5);
+    EXPECT_EQ(s.get<std::string>("c"), "text");
+    EXPECT_EQ(s.vec3("d")[2], 3.0);
+    Section e = s.section("e");
+    EXPECT_TRUE(e.get<bool>("x"));
+    EXPECT_EQ(e.get_or<int>("missing", 9), 9);
+    EXPECT_NO_THROW(e.finish());
+    EXPECT_NO_THROW(s.finish());
+}
+
+TEST(YamlSection, UnknownKeyNamesItsPathAndLine) {
+    const auto msg = error_of("planner:\n  mu: 3\n  muu: 4\n", [](Section& s) {
+        Section p = s.section("planner");
+        p.get<int>("mu");
+        p.finish();
+    });
+    EXPECT_THAT(msg, HasSubstr("cell.yaml: line 3: planner.muu: unknown key"));
+}
+
+TEST(YamlSection, OutOfBoundsNamesKeyRangeAndValue) {
+    const auto msg = error_of("planner:\n  eta: 1.5\n", [](Section& s) {
+        s.section("planner").number("eta", 0.5, -1, 1);
+    });
+    EXPECT_THAT(msg, HasSubstr("line 2: planner.eta: must be in [-1, 1], got 1.5"));
+}
+
+TEST(YamlSection, WrongTypeAndMissingRequired) {
+    EXPECT_THAT(error_of("a: hello\n", [](Section& s) { s.get<double>("a"); }),
+                HasSubstr("a: must be a number, not 'hello'"));
+    EXPECT_THAT(error_of("a: 1\n", [](Section& s) { s.get<std::string>("b"); }),
+                HasSubstr("b: is required"));
+    EXPECT_THAT(error_of("a: [1, 2]\n", [](Section& s) { s.vec3("a"); }),
+                HasSubstr("a: must be a list of 3 numbers"));
+    EXPECT_THAT(error_of("a: .nan\n", [](Section& s) { s.get<double>("a"); }),
+                HasSubstr("a: must be a finite number"));
+    EXPECT_THAT(error_of("s: 5\n", [](Section& s) { s.section("s"); }),
+                HasSubstr("s: must be a mapping"));
+    EXPECT_THAT(error_of("k: maybe\n", [](Section& s) { s.choice("k", "yes", {"yes", "no"}); }),
+                HasSubstr("k: must be one of yes, no, got 'maybe'"));
+}
+
+TEST(YamlSection, SyntaxErrorNamesLine) {
+    EXPECT_THAT(error_of("a: 1\nb: [1, 2\n", [](Section&) {}), HasSubstr("cell.yaml: line"));
+    EXPECT_THAT(error_of("- just\n- a list\n", [](Section&) {}), HasSubstr("must be a mapping"));
+}

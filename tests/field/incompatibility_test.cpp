@@ -1,0 +1,81 @@
+#include "planner/field/incompatibility.hpp"
+
+#include "planner/mesh/adjacency.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+using namespace fibrecell::planner;
+
+namespace {
+
+struct Case {
+    TetMesh mesh = structured_tet_mesh({.size = {4, 4, 2}, .cells = {4, 4, 2}});
+    CsrGraph around = vertex_sharing_neighbours(mesh);
+    std::vector<Eigen::Vector3d> v = std::vector<Eigen::Vector3d>(mesh.tet_count(),
+                                                                  Eigen::Vector3d::UnitX());
+};
+
+std::set<int> undefined(const std::vector<std::uint8_t>& defined) {
+    std::set<int> out;
+    for (std::size_t i = 0; i < defined.size(); ++i)
+        if (!defined[i]) out.insert(static_cast<int>(i));
+    return out;
+}
+
+}  // namespace
+
+TEST(Incompatibility, UniformFieldKeepsEverything) {
+    Case c;
+    EXPECT_TRUE(undefined(compatible_directions(c.v, c.around)).empty());
+}
+
+TEST(Incompatibility, AllNeighboursRuleRemovesExactlyTheOddElement) {
+    Case c;
+    const int odd = 40;
+    c.v[odd] = Eigen::Vector3d::UnitY();  // 90 degrees off every neighbour
+    const auto defined = compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::all_neighbours});
+    EXPECT_EQ(undefined(defined), std::set<int>{odd});
+}
+
+TEST(Incompatibility, AnyNeighbourRuleRemovesTheOddElementAndItsNeighbours) {
+    Case c;
+    const int odd = 40;
+    c.v[odd] = Eigen::Vector3d::UnitY();
+    const auto defined = compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour});
+    std::set<int> expected{odd};
+    for (int n : c.around.neighbours(odd)) expected.insert(n);
+    EXPECT_EQ(undefined(defined), expected);
+    EXPECT_GT(expected.size(), 20u);  // vertex sharing reaches far beyond the 4 face neighbours
+}
+
+TEST(Incompatibility, ThresholdIsInclusiveAndJudgedOnTheInputField) {
+    Case c;
+    // Two elements at exactly 60 degrees from the rest: dot = 0.5 <= eta counts as disagreeing.
+    const Eigen::Vector3d at60(0.5, std::sqrt(3.0) / 2.0, 0.0);
+    const int a = 10;
+    c.v[a] = at60;
+    auto defined = compatible_directions(c.v, c.around, {0.5 + 1e-12, IncompatibilityRule::all_neighbours});
+    EXPECT_EQ(undefined(defined), std::set<int>{a});
+    defined = compatible_directions(c.v, c.around, {0.49, IncompatibilityRule::all_neighbours});
+    EXPECT_TRUE(undefined(defined).empty());
+}
+
+TEST(Incompatibility, ElementAgreeingWithOneNeighbourIsKeptUnderThePapersRule) {
+    Case c;
+    // Two face-adjacent elements both turned to y: each agrees with the other, so "for all
+    // neighbours" keeps both, while "any neighbour" removes them.
+    const auto nb = face_neighbours(c.mesh);
+    const int a = 40;
+    int b = -1;
+    for (int f : nb[a])
+        if (f >= 0) b = f;
+    ASSERT_GE(b, 0);
+    c.v[a] = c.v[b] = Eigen::Vector3d::UnitY();
+    EXPECT_TRUE(undefined(compatible_directions(c.v, c.around)).empty());
+    const auto any = undefined(compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour}));
+    EXPECT_TRUE(any.contains(a) && any.contains(b));
+}

@@ -1,0 +1,107 @@
+#pragma once
+// Helpers for the reader tests: a temporary directory for files written by a test, and a check
+// that a call is rejected with an InputError whose message names what it should.
+
+#include "planner/input_error.hpp"
+#include "planner/mesh/tet_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace io_test {
+
+inline std::string data_path(const std::string& name) {
+    return std::string(FIBRECELL_TEST_DATA) + "/io/" + name;
+}
+
+inline std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A fresh directory removed with its contents at the end of the test.
+class TempDir {
+public:
+    TempDir() {
+        std::string pattern =
+            (std::filesystem::temp_directory_path() / "fibrecell-io-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+        path_ = pattern;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    // Writes `content` to `name` in the directory and returns the file's path.
+    std::string write(const std::string& name, std::string_view content) const {
+        const std::string file = (path_ / name).string();
+        std::ofstream out(file, std::ios::binary);
+        out.write(content.data(), static_cast<std::streamsize>(content.size()));
+        return file;
+    }
+    std::string path(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+// `text` with the first occurrence of `from` replaced by `to`; fails the test if absent.
+inline std::string replaced(std::string text, std::string_view from, std::string_view to) {
+    const auto at = text.find(from);
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "test setup: '" << from << "' not found";
+        return text;
+    }
+    return text.replace(at, from.size(), to);
+}
+
+// Runs `f`, requires an InputError whose message contains every part; returns the message.
+template <class F>
+std::string rejection(F&& f, std::initializer_list<std::string_view> parts) {
+    try {
+        f();
+    } catch (const fibrecell::planner::InputError& e) {
+        const std::string message = e.what();
+        for (std::string_view part : parts)
+            EXPECT_NE(message.find(part), std::string::npos)
+                << "message lacks '" << part << "': " << message;
+        return message;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected InputError, got another exception: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected InputError, nothing thrown";
+    return {};
+}
+
+#define EXPECT_REJECTED(statement, ...)                                  \
+    do {                                                                 \
+        SCOPED_TRACE(#statement);                                        \
+        ::io_test::rejection([&] { (void)(statement); }, {__VA_ARGS__}); \
+    } while (0)
+
+// The stress the test data gives tet i (same formula as in the data files).
+inline fibrecell::planner::StressTensor cube_stress(int i) {
+    const double xy = 1 + 0.5 * i, xz = 2 + 0.25 * i, yz = 3 + 0.125 * i;
+    fibrecell::planner::StressTensor s;
+    s << 10 + i, xy, xz, xy, 20 + i, yz, xz, yz, 30 + i;
+    return s;
+}
+
+// Every tet positively oriented.
+inline bool all_positive(const fibrecell::planner::TetMesh& mesh) {
+    for (const auto& t : mesh.tets)
+        if (!(fibrecell::planner::signed_volume(mesh, t) > 0)) return false;
+    return true;
+}
+
+}  // namespace io_test
