@@ -6,28 +6,14 @@
 #include "planner/fea/sparse_cholesky.hpp"
 #include "planner/fea/stiffness_assembly.hpp"
 #include "planner/fea/tet_element.hpp"
+#include "planner/stopwatch.hpp"
 
-#include <chrono>
 #include <sstream>
 
 namespace fibrecell::planner {
 namespace {
 
 constexpr const char* kStage = "fea";
-
-class Stopwatch {
-  public:
-    // Seconds since construction or the previous lap.
-    double lap() {
-        const auto now = std::chrono::steady_clock::now();
-        const double s = std::chrono::duration<double>(now - last_).count();
-        last_ = now;
-        return s;
-    }
-
-  private:
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 [[noreturn]] void throw_singular(const TetMesh& mesh, const DofNumbering& dofs,
                                  const SingularPivot& pivot) {

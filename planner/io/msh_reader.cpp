@@ -8,6 +8,7 @@
 #include "planner/io/text_scanner.hpp"
 #include "planner/io/validate_model.hpp"
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cmath>
@@ -21,13 +22,14 @@ namespace {
 
 using DimTag = std::pair<int, long long>;  // (dimension, tag) of a physical group or entity
 
-// An $ElementData view with 6 or 9 components, mapped onto the tets as it is read.
+// An $ElementData view with 6 or 9 components. Sized by its entries, not by the mesh, so that
+// many small views cannot make the reader allocate more than the file holds.
 struct StressView {
     std::string name;
     int components = 0;
     std::size_t line = 0;        // line of its $ElementData header
-    std::vector<double> values;  // components per tet
-    std::vector<char> given;     // per tet
+    std::vector<int> tets;       // tet of each entry
+    std::vector<double> values;  // components per entry
     std::size_t bad_line = 0;    // first non-finite value
 };
 
@@ -291,10 +293,8 @@ private:
 
         const bool candidate = is_stress_component_count(components);
         StressView view{name, static_cast<int>(components), header_line, {}, {}, 0};
-        if (candidate) {
-            view.values.resize(tets_.size() * static_cast<std::size_t>(components));
-            view.given.resize(tets_.size());
-        }
+        seen_in_view_.resize(tets_.size(), -1);
+        const int view_number = static_cast<int>(views_.size());
         for (long long i = 0; i < entries; ++i) {
             const long long tag = s_.integer("an element tag");
             const auto it = element_index_.find(tag);
@@ -305,16 +305,16 @@ private:
                 s_.skip_tokens(components, "an element value");
                 continue;
             }
-            const auto tet = static_cast<std::size_t>(it->second);
-            if (view.given[tet])
+            int& seen = seen_in_view_[static_cast<std::size_t>(it->second)];
+            if (seen == view_number)
                 s_.fail("element tag " + std::to_string(tag) + " appears twice in this view");
-            view.given[tet] = 1;
+            seen = view_number;
+            view.tets.push_back(it->second);
             for (long long k = 0; k < components; ++k) {
                 const double v = s_.any_real("a stress component");
                 // Rejected only if this view turns out to be the stress.
                 if (!std::isfinite(v) && view.bad_line == 0) view.bad_line = s_.line();
-                view.values[tet * static_cast<std::size_t>(components) +
-                            static_cast<std::size_t>(k)] = v;
+                view.values.push_back(v);
             }
         }
         expect_end("ElementData", " (wrong number of elements or components?)");
@@ -399,17 +399,22 @@ private:
                 throw InputError::at_line(file, view->bad_line,
                                           "stress view '" + shown(view->name) +
                                               "' has a value that is not a finite number");
-            auto& stress = model.stress.emplace();
-            stress.reserve(tets_.size());
-            for (std::size_t t = 0; t < tets_.size(); ++t) {
-                if (!view->given[t])
-                    throw InputError(file, numbering.element_name(t),
-                                     "no value in $ElementData view '" + shown(view->name) +
-                                         "' (line " + std::to_string(view->line) + ")");
-                stress.push_back(stress_from_components(
-                    &view->values[t * static_cast<std::size_t>(view->components)],
-                    view->components));
+            std::vector<StressTensor> stress(tets_.size());
+            std::vector<char> given(tets_.size(), 0);
+            for (std::size_t e = 0; e < view->tets.size(); ++e) {
+                const auto t = static_cast<std::size_t>(view->tets[e]);
+                stress[t] = stress_from_components(
+                    &view->values[e * static_cast<std::size_t>(view->components)],
+                    view->components);
+                given[t] = 1;
             }
+            const auto missing = std::find(given.begin(), given.end(), 0);
+            if (missing != given.end())
+                throw InputError(
+                    file, numbering.element_name(static_cast<std::size_t>(missing - given.begin())),
+                    "no value in $ElementData view '" + shown(view->name) + "' (line " +
+                        std::to_string(view->line) + ")");
+            model.stress = std::move(stress);
         }
         validate_model(model, file, numbering);
         return model;
@@ -429,6 +434,7 @@ private:
     std::unordered_map<long long, int> element_index_;  // element tag -> tet, or -1 for others
     std::map<DimTag, std::vector<int>> group_nodes_;    // physical group -> node positions
     std::vector<StressView> views_;
+    std::vector<int> seen_in_view_;  // per tet: the last candidate view that gave it a value
 };
 
 }  // namespace

@@ -348,8 +348,9 @@ private:
                                               std::to_string(named->line) + ")");
             named = &a;
         }
-        if (named || stress_arrays_.size() <= 1)
-            return named ? named : stress_arrays_.empty() ? nullptr : &stress_arrays_.front();
+        if (named) return named;
+        if (stress_arrays_.size() <= 1)
+            return stress_arrays_.empty() ? nullptr : &stress_arrays_.front();
         std::string names;
         for (const StressArray& a : stress_arrays_)
             names += (names.empty() ? "'" : ", '") + shown(a.name) + "'";

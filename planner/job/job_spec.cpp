@@ -44,6 +44,8 @@ Region read_region(const std::string& name, Section s) {
         cyl.axis.normalize();
         cyl.radius_mm = c.number("radius_mm", 0, 0, kBig, true);
         cyl.tolerance_mm = c.number("tolerance_mm", 0.1, 0, kBig);
+        cyl.facing = to_vector(c.vec3_or("facing", {0, 0, 0}));
+        if (cyl.facing.norm() > 0) cyl.facing.normalize();
         c.finish();
         r.shape = cyl;
     } else {

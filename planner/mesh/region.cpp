@@ -15,8 +15,9 @@ struct InsideTest {
     }
     bool operator()(const CylinderRegion& c) const {
         const Eigen::Vector3d d = p - c.point;
-        const double radial = (d - d.dot(c.axis) * c.axis).norm();
-        return std::abs(radial - c.radius_mm) <= c.tolerance_mm;
+        const Eigen::Vector3d radial = d - d.dot(c.axis) * c.axis;
+        return std::abs(radial.norm() - c.radius_mm) <= c.tolerance_mm &&
+               radial.dot(c.facing) >= -c.tolerance_mm;  // the dividing line belongs to both
     }
     bool operator()(const GroupRegion&) const { return false; }  // handled by vertex list
 };

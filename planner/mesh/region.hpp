@@ -26,6 +26,9 @@ struct CylinderRegion {
     Eigen::Vector3d axis;   // axis direction (normalised on load)
     double radius_mm = 0;
     double tolerance_mm = 0;
+    // Unit vector or zero. When non-zero, only the half on this side of the axis (within the
+    // tolerance): the side of a hole a pin bears on.
+    Eigen::Vector3d facing = Eigen::Vector3d::Zero();
 };
 
 struct GroupRegion {

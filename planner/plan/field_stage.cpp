@@ -5,7 +5,7 @@
 #include "planner/io/read_model.hpp"
 #include "planner/mesh/adjacency.hpp"
 #include "planner/mesh/boundary.hpp"
-#include "planner/plan/stopwatch.hpp"
+#include "planner/stopwatch.hpp"
 
 #include <spdlog/spdlog.h>
 

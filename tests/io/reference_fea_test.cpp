@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include <charconv>
+#include <algorithm>
 
 using namespace fibrecell::planner;
 

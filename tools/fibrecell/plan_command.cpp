@@ -4,7 +4,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/report.hpp"
-#include "planner/plan/stopwatch.hpp"
+#include "planner/stopwatch.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 
 #include <spdlog/spdlog.h>
