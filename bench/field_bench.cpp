@@ -94,17 +94,19 @@ FieldTimes run_field(const TetMesh& mesh, const std::vector<StressTensor>& stres
     const auto defined = compatible_directions(field.v_e, around);
     t.removal = clock.lap();
     auto fraction = [](const std::vector<std::uint8_t>& d) {
-        return static_cast<double>(std::count(d.begin(), d.end(), 0)) / static_cast<double>(d.size());
+        return static_cast<double>(std::count(d.begin(), d.end(), 0)) /
+               static_cast<double>(d.size());
     };
     t.removed_all = fraction(defined);
-    t.removed_any = fraction(compatible_directions(field.v_e, around,
-                                                   {0.5, IncompatibilityRule::any_neighbour}));
+    t.removed_any = fraction(
+        compatible_directions(field.v_e, around, {0.5, IncompatibilityRule::any_neighbour}));
     return t;
 }
 
 void bench_sizes() {
-    std::printf("Vector-field stage on Loop-like plates of the paper's sizes (seconds; paper: "
-                "i7-9750H, 6 cores)\n\n");
+    std::printf(
+        "Vector-field stage on Loop-like plates of the paper's sizes (seconds; paper: "
+        "i7-9750H, 6 cores)\n\n");
     std::printf("%-7s %7s | %6s %6s %6s %6s | %7s %8s %7s | %7s %7s %6s | %7s\n", "paper", "tets",
                 "fea", "vtk MB", "read", "princ.", "MST", "paper", "ratio", "removal", "paper",
                 "ratio", "p+r");
@@ -115,7 +117,8 @@ void bench_sizes() {
         const double fea_s = clock.lap();
 
         const std::string path = (std::filesystem::temp_directory_path() /
-                                  ("fibrecell-bench-" + std::to_string(row.tets) + ".vtk")).string();
+                                  ("fibrecell-bench-" + std::to_string(row.tets) + ".vtk"))
+                                     .string();
         write_field_vtk(path, mesh, {.stress = &fea.stress}, VtkEncoding::ascii);
         const double mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
         clock.lap();
@@ -124,11 +127,12 @@ void bench_sizes() {
         std::filesystem::remove(path);
 
         const FieldTimes t = run_field(back.mesh, *back.stress);
-        std::printf("%-7s %7zu | %6.3f %6.1f %6.3f %6.3f | %7.4f %8.3f %6.0fx | %7.4f %7.3f %5.0fx | "
-                    "%7.4f\n",
-                    row.model, mesh.tet_count(), fea_s, mb, read_s, t.principal, t.mst, row.mst_s,
-                    row.mst_s / t.mst, t.removal, row.removal_s, row.removal_s / t.removal,
-                    t.principal + t.removal);
+        std::printf(
+            "%-7s %7zu | %6.3f %6.1f %6.3f %6.3f | %7.4f %8.3f %6.0fx | %7.4f %7.3f %5.0fx | "
+            "%7.4f\n",
+            row.model, mesh.tet_count(), fea_s, mb, read_s, t.principal, t.mst, row.mst_s,
+            row.mst_s / t.mst, t.removal, row.removal_s, row.removal_s / t.removal,
+            t.principal + t.removal);
     }
 }
 
@@ -144,8 +148,8 @@ void bench_reference(const std::string& dir) {
         const double read_s = clock.lap();
         const FieldTimes t = run_field(m.mesh, *m.stress);
         std::printf("%-10s %7zu | %6.3f %6.3f %7.4f %7.4f | %8.2f%% %8.2f%%\n", name,
-                    m.mesh.tet_count(), read_s, t.principal, t.mst, t.removal,
-                    100 * t.removed_all, 100 * t.removed_any);
+                    m.mesh.tet_count(), read_s, t.principal, t.mst, t.removal, 100 * t.removed_all,
+                    100 * t.removed_any);
     }
 }
 

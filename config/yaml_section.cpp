@@ -56,8 +56,7 @@ Section::Section(YAML::Node node, std::string path, std::shared_ptr<const std::s
 }
 
 bool Section::has(std::string_view key) const {
-    return node_ && node_.IsMap() && node_[std::string(key)] &&
-           !node_[std::string(key)].IsNull();
+    return node_ && node_.IsMap() && node_[std::string(key)] && !node_[std::string(key)].IsNull();
 }
 
 std::string Section::key_path(std::string_view key) const {
@@ -92,7 +91,8 @@ template <class T>
 T Section::get(std::string_view key) {
     YAML::Node n = child(key, true);
     try {
-        if constexpr (std::is_same_v<T, std::vector<int>> || std::is_same_v<T, std::vector<double>> ||
+        if constexpr (std::is_same_v<T, std::vector<int>> ||
+                      std::is_same_v<T, std::vector<double>> ||
                       std::is_same_v<T, std::vector<std::string>>) {
             if (!n.IsSequence()) throw YAML::BadConversion(n.Mark());
         } else {
@@ -194,7 +194,9 @@ std::vector<Section> Section::sections(std::string_view key) {
     return out;
 }
 
-YAML::Node Section::node(std::string_view key) { return child(key, false); }
+YAML::Node Section::node(std::string_view key) {
+    return child(key, false);
+}
 
 std::vector<std::string> Section::keys() const {
     std::vector<std::string> out;

@@ -16,12 +16,12 @@
 namespace fibrecell::config {
 
 class ConfigError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 class Section {
-public:
+  public:
     // Parses a whole file; throws ConfigError naming the file on syntax errors.
     static Section load_file(const std::string& path);
     // Parses YAML text; `origin` names it in messages (a file name or "<job.submit>").
@@ -68,7 +68,7 @@ public:
     const std::string& origin() const { return *origin_; }
     bool is_null() const { return !node_ || node_.IsNull(); }
 
-private:
+  private:
     YAML::Node child(std::string_view key, bool required);
     std::string where(const YAML::Node& n) const;
 

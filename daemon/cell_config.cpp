@@ -8,8 +8,8 @@ CellConfig load_cell_config(const std::string& path) {
     auto root = config::Section::load_file(path);
     CellConfig c;
     c.name = root.get_or<std::string>("name", c.name);
-    c.log_level = root.choice("log_level", c.log_level,
-                              {"trace", "debug", "info", "warn", "error", "off"});
+    c.log_level =
+        root.choice("log_level", c.log_level, {"trace", "debug", "info", "warn", "error", "off"});
     c.state_dir = root.get_or<std::string>("state_dir", c.state_dir);
     c.simulated = root.get_or<bool>("simulated", c.simulated);
     root.finish();

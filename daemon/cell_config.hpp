@@ -7,10 +7,10 @@
 namespace fibrecell::daemon {
 
 struct CellConfig {
-    std::string name = "cell-1";                      // shown in status and logs
-    std::string log_level = "info";                   // trace|debug|info|warn|error|off
-    std::string state_dir = "/var/lib/fibrecelld";    // job folders live here
-    bool simulated = true;                            // simulated controller and mock board
+    std::string name = "cell-1";                    // shown in status and logs
+    std::string log_level = "info";                 // trace|debug|info|warn|error|off
+    std::string state_dir = "/var/lib/fibrecelld";  // job folders live here
+    bool simulated = true;                          // simulated controller and mock board
 };
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key.

@@ -5,8 +5,8 @@
 #include "config/yaml_section.hpp"
 #include "daemon/cell_config.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <iostream>
 
@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
         return 0;
     }
     fibrecell::config::setup_logging(cell.log_level);
-    spdlog::error("service.unavailable the service loop is not part of this build yet; "
-                  "use `fibrecell plan` for offline planning");
+    spdlog::error(
+        "service.unavailable the service loop is not part of this build yet; "
+        "use `fibrecell plan` for offline planning");
     return 3;
 }

@@ -8,13 +8,14 @@
 namespace fibrecell::planner {
 
 class InputError : public std::runtime_error {
-public:
+  public:
     // `where` is "line 12", "element 345", "vertex 7" or empty when the problem is the whole file.
     InputError(const std::string& file, const std::string& where, const std::string& problem)
         : std::runtime_error(file + (where.empty() ? "" : ": " + where) + ": " + problem),
           file_(file) {}
 
-    static InputError at_line(const std::string& file, std::size_t line, const std::string& problem) {
+    static InputError at_line(const std::string& file, std::size_t line,
+                              const std::string& problem) {
         return InputError(file, "line " + std::to_string(line), problem);
     }
     static InputError at_element(const std::string& file, std::size_t element,
@@ -24,7 +25,7 @@ public:
 
     const std::string& file() const { return file_; }
 
-private:
+  private:
     std::string file_;
 };
 

@@ -9,20 +9,21 @@
 
 namespace fibrecell::planner {
 
-// Thrown by CancelToken::throw_if_cancelled; callers treat it as "stopped on request", not a failure.
+// Thrown by CancelToken::throw_if_cancelled; callers treat it as "stopped on request", not a
+// failure.
 struct Cancelled : std::runtime_error {
     Cancelled() : std::runtime_error("planning cancelled") {}
 };
 
 class CancelToken {
-public:
+  public:
     void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
     bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
     void throw_if_cancelled() const {
         if (cancelled()) throw Cancelled();
     }
 
-private:
+  private:
     std::atomic<bool> cancelled_{false};
 };
 

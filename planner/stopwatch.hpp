@@ -6,7 +6,7 @@
 namespace fibrecell::planner {
 
 class Stopwatch {
-public:
+  public:
     // Seconds since construction or the last lap, and restarts.
     double lap() {
         const auto now = std::chrono::steady_clock::now();
@@ -18,7 +18,7 @@ public:
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
 
-private:
+  private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point last_ = start_;
 };

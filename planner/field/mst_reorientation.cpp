@@ -19,8 +19,7 @@ struct Candidate {
 
 MstReorientationResult mst_reorient(std::vector<Eigen::Vector3d>& v_e,
                                     const std::vector<double>& sigma_e,
-                                    const FaceNeighbours& neighbours,
-                                    const StepControl& control) {
+                                    const FaceNeighbours& neighbours, const StepControl& control) {
     const int n = static_cast<int>(v_e.size());
     MstReorientationResult result;
     result.parent.assign(n, -1);

@@ -12,7 +12,7 @@ namespace fibrecell::planner {
 
 // Principal stresses of one tensor, sorted by absolute value (largest first), with unit directions.
 struct PrincipalStress {
-    Eigen::Vector3d values;      // sigma_1, sigma_2, sigma_3 [MPa], |sigma_1| >= |sigma_2| >= |sigma_3|
+    Eigen::Vector3d values;  // sigma_1, sigma_2, sigma_3 [MPa], |sigma_1| >= |sigma_2| >= |sigma_3|
     Eigen::Matrix3d directions;  // column i is tau_i (unit length; sign arbitrary)
 };
 
@@ -26,8 +26,8 @@ enum class TensileRule : std::uint8_t {
 };
 
 struct TensileFieldOptions {
-    double mu = 3.0;                  // how much stronger compression may be than tension (rule 2)
-    double no_tension_sigma = 1e-5;   // sigma_e where there is no useful tension [MPa]
+    double mu = 3.0;                 // how much stronger compression may be than tension (rule 2)
+    double no_tension_sigma = 1e-5;  // sigma_e where there is no useful tension [MPa]
 };
 
 struct TensileField {

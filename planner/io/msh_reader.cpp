@@ -36,7 +36,7 @@ struct StressView {
 constexpr long long kMaxTags = 1 << 16;
 
 class MshParser {
-public:
+  public:
     MshParser(std::string_view text, const std::string& file) : s_(text, file) {}
 
     VolumeModel parse() {
@@ -66,7 +66,7 @@ public:
         return assemble();
     }
 
-private:
+  private:
     void read_format() {
         s_.expect("$MeshFormat");
         const std::string_view version = s_.token("the MSH version");

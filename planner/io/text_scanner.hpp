@@ -12,7 +12,7 @@
 namespace fibrecell::planner {
 
 class TextScanner {
-public:
+  public:
     // `text` must outlive the scanner; `file` names the file in error messages.
     TextScanner(std::string_view text, std::string file);
 
@@ -60,7 +60,7 @@ public:
     InputError error(const std::string& problem) const;
     [[noreturn]] void fail(const std::string& problem) const;
 
-private:
+  private:
     void skip_space();
 
     std::string_view text_;

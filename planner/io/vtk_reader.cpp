@@ -32,7 +32,7 @@ struct StressArray {
 constexpr long long kMaxComponents = 1 << 16;
 
 class VtkParser {
-public:
+  public:
     VtkParser(std::string_view text, const std::string& file) : s_(text, file) {}
 
     VolumeModel parse() {
@@ -59,7 +59,7 @@ public:
         return assemble();
     }
 
-private:
+  private:
     void read_header() {
         std::string_view line;
         constexpr std::string_view kMagic = "# vtk DataFile Version";

@@ -32,7 +32,7 @@ std::optional<VtkScalar> vtk_scalar_from_name(std::string_view name);
 // Reads `count` values of `type` that follow the current header line, one at a time, so that an
 // ASCII error can name the line of the bad value. In binary files an error names the header line.
 class VtkValueStream {
-public:
+  public:
     VtkValueStream(TextScanner& scanner, bool binary, long long count, VtkScalar type,
                    std::string_view what);
 
@@ -40,7 +40,7 @@ public:
     double real();        // the next value as a finite double
     double any_real();    // the next value as a double, NaN and infinity passed through
 
-private:
+  private:
     TextScanner& s_;
     bool binary_;
     VtkScalar type_;

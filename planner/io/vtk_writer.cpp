@@ -11,7 +11,7 @@ namespace {
 
 // Appends numbers in either encoding: big-endian binary (the legacy VTK convention) or text.
 class VtkOut {
-public:
+  public:
     explicit VtkOut(VtkEncoding encoding) : binary_(encoding == VtkEncoding::binary) {}
 
     void text(std::string_view s) { out_ += s; }
@@ -36,7 +36,7 @@ public:
     }
     std::string& str() { return out_; }
 
-private:
+  private:
     bool binary_;
     std::string out_;
 };

@@ -15,7 +15,9 @@ namespace {
 
 constexpr double kBig = 1e9;  // an upper bound for values with no natural limit
 
-Eigen::Vector3d to_vector(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+Eigen::Vector3d to_vector(const std::array<double, 3>& a) {
+    return {a[0], a[1], a[2]};
+}
 
 std::string resolve_file(Section& s, std::string_view key, const std::string& base_dir) {
     const std::string raw = s.get<std::string>(key);
@@ -62,7 +64,8 @@ LoadCaseSpec read_load_case(Section s) {
     lc.poisson_ratio = m.number("poisson_ratio", lc.poisson_ratio, -0.99, 0.49);
     m.finish();
     lc.supports = s.get<std::vector<std::string>>("supports");
-    if (lc.supports.empty()) s.fail("supports", "needs at least one region (the part must be held)");
+    if (lc.supports.empty())
+        s.fail("supports", "needs at least one region (the part must be held)");
     for (Section l : s.sections("loads")) {
         LoadSpec load{l.get<std::string>("region"), to_vector(l.vec3("force_n"))};
         l.finish();
@@ -83,15 +86,17 @@ LayerScheduleSpec read_layers(Section s) {
     } else if (n.IsScalar()) {
         const std::string word = n.Scalar();
         if (word != "all" && word != "none")
-            s.fail("ccf_after_pla", "must be all, none, a list of PLA layer numbers, or "
-                                    "{every: N, first: K}; got '" + word + "'");
+            s.fail("ccf_after_pla",
+                   "must be all, none, a list of PLA layer numbers, or "
+                   "{every: N, first: K}; got '" +
+                       word + "'");
         l.ccf_on_all = word == "all";
     } else if (n.IsSequence()) {
         l.ccf_on_all = false;
         l.ccf_after_pla = s.get<std::vector<int>>("ccf_after_pla");
         for (int i : l.ccf_after_pla)
-            if (i < 1) s.fail("ccf_after_pla", "PLA layer numbers start at 1, got " +
-                                                   std::to_string(i));
+            if (i < 1)
+                s.fail("ccf_after_pla", "PLA layer numbers start at 1, got " + std::to_string(i));
         std::sort(l.ccf_after_pla.begin(), l.ccf_after_pla.end());
     } else {
         Section e = s.section("ccf_after_pla");
@@ -134,7 +139,8 @@ HeadProcessSpec read_head(Section s, HeadProcessSpec h) {
 void check_region_names(Section& s, std::string_view key, const std::vector<std::string>& names,
                         const JobSpec& job) {
     for (const auto& n : names)
-        if (!job.find_region(n)) s.fail(key, "names region '" + n + "', which `regions` does not define");
+        if (!job.find_region(n))
+            s.fail(key, "names region '" + n + "', which `regions` does not define");
 }
 
 }  // namespace
@@ -181,8 +187,8 @@ JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
         check_region_names(lc, "supports", job.model.load_case->supports, job);
         for (const auto& load : job.model.load_case->loads)
             if (!job.find_region(load.region))
-                lc.fail("loads", "names region '" + load.region +
-                                     "', which `regions` does not define");
+                lc.fail("loads",
+                        "names region '" + load.region + "', which `regions` does not define");
     }
     model.finish();
 

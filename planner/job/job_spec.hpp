@@ -22,7 +22,7 @@ struct LoadSpec {
 struct LoadCaseSpec {
     double youngs_modulus_mpa = 3500.0;  // PLA
     double poisson_ratio = 0.36;
-    std::vector<std::string> supports;   // regions fixed in all three directions
+    std::vector<std::string> supports;  // regions fixed in all three directions
     std::vector<LoadSpec> loads;
 };
 
@@ -56,8 +56,8 @@ std::string_view to_string(Strategy s);
 
 struct PlannerSpec {
     Strategy strategy = Strategy::field;
-    double mu = 3.0;                 // rule-2 threshold |sigma_1 / sigma_2| < mu
-    double eta = 0.5;                // incompatibility threshold (Eq. 2)
+    double mu = 3.0;   // rule-2 threshold |sigma_1 / sigma_2| < mu
+    double eta = 0.5;  // incompatibility threshold (Eq. 2)
     IncompatibilityRule incompatibility_rule = IncompatibilityRule::all_neighbours;
     double p = 1.0;                  // density exponent of u_f = sigma^p v/|v| (Eq. 5)
     double fibre_spacing_mm = 1.0;   // W: minimal spacing between fibre paths
@@ -69,7 +69,7 @@ struct HeadProcessSpec {
     double speed_mm_s;         // printing speed
     double travel_speed_mm_s;  // moves without material
     double nozzle_temp_c;
-    double line_width_mm;      // deposited line (PLA) or ribbon (CCF) width
+    double line_width_mm;  // deposited line (PLA) or ribbon (CCF) width
     double nozzle_diameter_mm;
 };
 

@@ -23,8 +23,8 @@ std::vector<BoundaryTriangle> boundary_triangles(const TetMesh& mesh,
         for (int f = 0; f < 4; ++f) {
             if (neighbours[t][f] >= 0) continue;
             const Tet& tet = mesh.tets[t];
-            out.push_back({{tet[kFaces[f][0]], tet[kFaces[f][1]], tet[kFaces[f][2]]},
-                           static_cast<int>(t)});
+            out.push_back(
+                {{tet[kFaces[f][0]], tet[kFaces[f][1]], tet[kFaces[f][2]]}, static_cast<int>(t)});
         }
     }
     return out;

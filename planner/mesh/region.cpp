@@ -33,8 +33,8 @@ std::vector<char> vertices_inside(const VolumeModel& model, const Region& region
             for (const auto& [name, _] : model.vertex_groups)
                 known += (known.empty() ? "" : ", ") + name;
             throw std::invalid_argument("region '" + region.name + "': the mesh has no group '" +
-                                        g->group + "' (groups: " +
-                                        (known.empty() ? "none" : known) + ")");
+                                        g->group +
+                                        "' (groups: " + (known.empty() ? "none" : known) + ")");
         }
         for (int v : it->second) inside[v] = 1;
         return inside;

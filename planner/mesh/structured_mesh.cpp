@@ -27,7 +27,9 @@ TetMesh structured_tet_mesh(const StructuredMeshOptions& o) {
                 const Eigen::Vector3d centre =
                     o.origin + step.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
                 if (o.keep_cell && !o.keep_cell(centre)) continue;
-                auto corner = [&](int c) { return vertex(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)); };
+                auto corner = [&](int c) {
+                    return vertex(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1));
+                };
                 for (const auto& path : kPaths) {
                     Tet t = {corner(0), corner(path[0]), corner(path[1]), corner(7)};
                     if (signed_volume(mesh, t) < 0) std::swap(t[1], t[2]);

@@ -30,7 +30,7 @@ using StressTensor = Eigen::Matrix3d;
 
 struct VolumeModel {
     TetMesh mesh;
-    std::optional<std::vector<StressTensor>> stress;      // one per tet, when the file has it
+    std::optional<std::vector<StressTensor>> stress;        // one per tet, when the file has it
     std::map<std::string, std::vector<int>> vertex_groups;  // name -> sorted vertex indices
 };
 

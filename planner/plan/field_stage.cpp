@@ -41,7 +41,8 @@ FeaSummary summarise(const FeaResult& r, const LoadCase& lc) {
     FeaSummary s;
     s.dof_count = r.dof_count;
     s.solver = r.solver;
-    for (const auto& d : r.displacement) s.max_displacement_mm = std::max(s.max_displacement_mm, d.norm());
+    for (const auto& d : r.displacement)
+        s.max_displacement_mm = std::max(s.max_displacement_mm, d.norm());
     for (const auto& f : r.reaction) s.reaction_sum_n += f;
     for (const auto& l : lc.loads) s.applied_sum_n += l.total_force_n;
     return s;
@@ -56,14 +57,16 @@ FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control)
     control.report("read", 0.0);
     out.model = read_volume_model(job.model.mesh_path, job.model.stress_path);
     out.timings.read = clock.lap();
-    spdlog::info("plan.read {} vertices, {} tets from {} in {:.3f} s", out.model.mesh.vertex_count(),
-                 out.model.mesh.tet_count(), job.model.mesh_path, out.timings.read);
+    spdlog::info("plan.read {} vertices, {} tets from {} in {:.3f} s",
+                 out.model.mesh.vertex_count(), out.model.mesh.tet_count(), job.model.mesh_path,
+                 out.timings.read);
     control.check_cancel();
 
     const FaceNeighbours faces = face_neighbours(out.model.mesh);
     if (job.model.load_case) {
         control.report("fea", 0.0);
-        const LoadCase lc = make_load_case(job, out.model, boundary_triangles(out.model.mesh, faces));
+        const LoadCase lc =
+            make_load_case(job, out.model, boundary_triangles(out.model.mesh, faces));
         const FeaResult fea = solve_linear_elastic(out.model.mesh, lc, {}, control);
         out.model.stress = fea.stress;
         out.fea = summarise(fea, lc);
@@ -88,7 +91,8 @@ FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control)
     const CsrGraph around = vertex_sharing_neighbours(out.model.mesh);
     IncompatibilityOptions removal{job.planner.eta, job.planner.incompatibility_rule};
     out.v_defined = compatible_directions(out.field.v_e, around, removal);
-    out.removed = static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
+    out.removed =
+        static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
     out.timings.incompatible_removal = clock.lap();
 
     // The other reading of Eq. 2, measured for the report (not timed as part of the stage).
@@ -102,11 +106,12 @@ FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control)
     clock.lap();
 
     out.timings.total = clock.elapsed();
-    spdlog::info("plan.field mst {:.3f} s ({} components, {} flipped), removal {:.3f} s "
-                 "({} of {} undefined, rule {})",
-                 out.timings.mst_reorientation, out.mst.components, out.mst.flipped,
-                 out.timings.incompatible_removal, out.removed, out.v_defined.size(),
-                 to_string(job.planner.incompatibility_rule));
+    spdlog::info(
+        "plan.field mst {:.3f} s ({} components, {} flipped), removal {:.3f} s "
+        "({} of {} undefined, rule {})",
+        out.timings.mst_reorientation, out.mst.components, out.mst.flipped,
+        out.timings.incompatible_removal, out.removed, out.v_defined.size(),
+        to_string(job.planner.incompatibility_rule));
     return out;
 }
 

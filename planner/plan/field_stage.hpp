@@ -33,11 +33,11 @@ struct FeaSummary {
 };
 
 struct FieldStageResult {
-    VolumeModel model;                 // mesh in the model frame, stress filled in
-    TensileField field;                // v_e re-oriented by the MST
+    VolumeModel model;                    // mesh in the model frame, stress filled in
+    TensileField field;                   // v_e re-oriented by the MST
     std::vector<std::uint8_t> v_defined;  // 0 where incompatibility removal undefined v_e
     MstReorientationResult mst;
-    std::size_t removed = 0;           // elements with v_e undefined
+    std::size_t removed = 0;  // elements with v_e undefined
     // The removal fraction under the other reading of Eq. 2, for comparison in the report.
     double removed_fraction_other_rule = 0;
     std::optional<FeaSummary> fea;

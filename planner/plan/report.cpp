@@ -48,12 +48,13 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
     };
     if (r.fea) {
         const auto& s = *r.fea;
-        report["fea"] = {{"unknowns", s.dof_count},
-                         {"solver", s.solver},
-                         {"max_displacement_mm", s.max_displacement_mm},
-                         {"applied_force_n", {s.applied_sum_n.x(), s.applied_sum_n.y(), s.applied_sum_n.z()}},
-                         {"reaction_force_n",
-                          {s.reaction_sum_n.x(), s.reaction_sum_n.y(), s.reaction_sum_n.z()}}};
+        report["fea"] = {
+            {"unknowns", s.dof_count},
+            {"solver", s.solver},
+            {"max_displacement_mm", s.max_displacement_mm},
+            {"applied_force_n", {s.applied_sum_n.x(), s.applied_sum_n.y(), s.applied_sum_n.z()}},
+            {"reaction_force_n",
+             {s.reaction_sum_n.x(), s.reaction_sum_n.y(), s.reaction_sum_n.z()}}};
     }
     return report;
 }

@@ -46,9 +46,8 @@ TEST(YamlSection, UnknownKeyNamesItsPathAndLine) {
 }
 
 TEST(YamlSection, OutOfBoundsNamesKeyRangeAndValue) {
-    const auto msg = error_of("planner:\n  eta: 1.5\n", [](Section& s) {
-        s.section("planner").number("eta", 0.5, -1, 1);
-    });
+    const auto msg = error_of("planner:\n  eta: 1.5\n",
+                              [](Section& s) { s.section("planner").number("eta", 0.5, -1, 1); });
     EXPECT_THAT(msg, HasSubstr("line 2: planner.eta: must be in [-1, 1], got 1.5"));
 }
 
@@ -63,7 +62,10 @@ TEST(YamlSection, WrongTypeAndMissingRequired) {
                 HasSubstr("a: must be a finite number"));
     EXPECT_THAT(error_of("s: 5\n", [](Section& s) { s.section("s"); }),
                 HasSubstr("s: must be a mapping"));
-    EXPECT_THAT(error_of("k: maybe\n", [](Section& s) { s.choice("k", "yes", {"yes", "no"}); }),
+    EXPECT_THAT(error_of("k: maybe\n",
+                         [](Section& s) {
+                             s.choice("k", "yes", {"yes", "no"});
+                         }),
                 HasSubstr("k: must be one of yes, no, got 'maybe'"));
 }
 

@@ -15,8 +15,8 @@ namespace {
 struct Case {
     TetMesh mesh = structured_tet_mesh({.size = {4, 4, 2}, .cells = {4, 4, 2}});
     CsrGraph around = vertex_sharing_neighbours(mesh);
-    std::vector<Eigen::Vector3d> v = std::vector<Eigen::Vector3d>(mesh.tet_count(),
-                                                                  Eigen::Vector3d::UnitX());
+    std::vector<Eigen::Vector3d> v =
+        std::vector<Eigen::Vector3d>(mesh.tet_count(), Eigen::Vector3d::UnitX());
 };
 
 std::set<int> undefined(const std::vector<std::uint8_t>& defined) {
@@ -37,7 +37,8 @@ TEST(Incompatibility, AllNeighboursRuleRemovesExactlyTheOddElement) {
     Case c;
     const int odd = 40;
     c.v[odd] = Eigen::Vector3d::UnitY();  // 90 degrees off every neighbour
-    const auto defined = compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::all_neighbours});
+    const auto defined =
+        compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::all_neighbours});
     EXPECT_EQ(undefined(defined), std::set<int>{odd});
 }
 
@@ -45,7 +46,8 @@ TEST(Incompatibility, AnyNeighbourRuleRemovesTheOddElementAndItsNeighbours) {
     Case c;
     const int odd = 40;
     c.v[odd] = Eigen::Vector3d::UnitY();
-    const auto defined = compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour});
+    const auto defined =
+        compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour});
     std::set<int> expected{odd};
     for (int n : c.around.neighbours(odd)) expected.insert(n);
     EXPECT_EQ(undefined(defined), expected);
@@ -58,7 +60,8 @@ TEST(Incompatibility, ThresholdIsInclusiveAndJudgedOnTheInputField) {
     const Eigen::Vector3d at60(0.5, std::sqrt(3.0) / 2.0, 0.0);
     const int a = 10;
     c.v[a] = at60;
-    auto defined = compatible_directions(c.v, c.around, {0.5 + 1e-12, IncompatibilityRule::all_neighbours});
+    auto defined =
+        compatible_directions(c.v, c.around, {0.5 + 1e-12, IncompatibilityRule::all_neighbours});
     EXPECT_EQ(undefined(defined), std::set<int>{a});
     defined = compatible_directions(c.v, c.around, {0.49, IncompatibilityRule::all_neighbours});
     EXPECT_TRUE(undefined(defined).empty());
@@ -76,6 +79,7 @@ TEST(Incompatibility, ElementAgreeingWithOneNeighbourIsKeptUnderThePapersRule) {
     ASSERT_GE(b, 0);
     c.v[a] = c.v[b] = Eigen::Vector3d::UnitY();
     EXPECT_TRUE(undefined(compatible_directions(c.v, c.around)).empty());
-    const auto any = undefined(compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour}));
+    const auto any =
+        undefined(compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour}));
     EXPECT_TRUE(any.contains(a) && any.contains(b));
 }

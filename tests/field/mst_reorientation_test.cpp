@@ -50,7 +50,9 @@ TEST(MstReorientation, CircularFieldBecomesConsistentEverywhere) {
     // v = tangential direction around the z axis in a square ring: globally orientable but
     // turning through 360 degrees, with random signs as from an eigen-solver.
     const TetMesh mesh = structured_tet_mesh(
-        {.origin = {-10, -10, 0}, .size = {20, 20, 2}, .cells = {20, 20, 2},
+        {.origin = {-10, -10, 0},
+         .size = {20, 20, 2},
+         .cells = {20, 20, 2},
          .keep_cell = [](const Eigen::Vector3d& c) { return c.head<2>().norm() > 4.0; }});
     std::vector<Eigen::Vector3d> v;
     for (const Tet& t : mesh.tets) {
@@ -99,8 +101,9 @@ TEST(MstReorientation, OnlyTheTurbulentRegionStaysInconsistent) {
 TEST(MstReorientation, SeedsEveryComponentAtItsLargestStress) {
     // Two separate blocks: two components, each keeps the sign of its strongest element.
     const TetMesh mesh = structured_tet_mesh(
-        {.size = {5, 1, 1}, .cells = {5, 1, 1},
-         .keep_cell = [](const Eigen::Vector3d& c) { return c.x() < 2 || c.x() > 3; }});
+        {.size = {5, 1, 1}, .cells = {5, 1, 1}, .keep_cell = [](const Eigen::Vector3d& c) {
+             return c.x() < 2 || c.x() > 3;
+         }});
     std::vector<Eigen::Vector3d> v(mesh.tet_count(), Eigen::Vector3d::UnitY());
     std::vector<double> sigma(mesh.tet_count(), 1.0);
     const int last = static_cast<int>(mesh.tet_count()) - 1;

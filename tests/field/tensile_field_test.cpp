@@ -10,10 +10,14 @@ using namespace fibrecell::planner;
 
 namespace {
 
-StressTensor diag(double a, double b, double c) { return Eigen::Vector3d(a, b, c).asDiagonal(); }
+StressTensor diag(double a, double b, double c) {
+    return Eigen::Vector3d(a, b, c).asDiagonal();
+}
 
 // |dot| of unit vectors: directions are only defined up to sign.
-double alignment(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::abs(a.dot(b)); }
+double alignment(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::abs(a.dot(b));
+}
 
 }  // namespace
 
@@ -63,8 +67,8 @@ TEST(TensileField, RuleTwoCompressionDominatedButTensionUseful) {
 
 TEST(TensileField, RuleThreeWhenTensionTooSmallOrAbsent) {
     // |-7 / 2| = 3.5 >= mu; exactly mu is not "< mu" either; pure compression; zero stress.
-    const auto f = tensile_field({diag(-7.0, 2.0, 0.0), diag(-6.0, 2.0, 0.0), diag(-1.0, -2.0, -3.0),
-                                  diag(0.0, 0.0, 0.0)});
+    const auto f = tensile_field(
+        {diag(-7.0, 2.0, 0.0), diag(-6.0, 2.0, 0.0), diag(-1.0, -2.0, -3.0), diag(0.0, 0.0, 0.0)});
     for (int e = 0; e < 4; ++e) {
         EXPECT_EQ(f.rule[e], TensileRule::no_tension) << "element " << e;
         EXPECT_DOUBLE_EQ(f.sigma_e[e], 1e-5);

@@ -27,7 +27,7 @@ inline std::string read_text(const std::string& path) {
 
 // A fresh directory removed with its contents at the end of the test.
 class TempDir {
-public:
+  public:
     TempDir() {
         std::string pattern =
             (std::filesystem::temp_directory_path() / "fibrecell-io-XXXXXX").string();
@@ -50,7 +50,7 @@ public:
     }
     std::string path(const std::string& name) const { return (path_ / name).string(); }
 
-private:
+  private:
     std::filesystem::path path_;
 };
 

@@ -36,7 +36,7 @@ void expect_cube(const VolumeModel& m) {
 }
 
 class MshReader : public ::testing::Test {
-protected:
+  protected:
     std::string rejects(const std::string& text, std::initializer_list<std::string_view> parts) {
         const std::string path = dir_.write("bad.msh", text);
         std::string message = io_test::rejection([&] { read_msh(path); }, parts);

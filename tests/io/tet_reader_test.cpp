@@ -26,7 +26,7 @@ std::string selection_text() {
 }
 
 class TetReader : public ::testing::Test {
-protected:
+  protected:
     // Writes the three files (any may be replaced) and reads them with read_tet.
     VolumeModel read(const std::string& tet, const std::string& stress,
                      const std::string& selection) {

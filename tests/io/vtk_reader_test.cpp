@@ -55,7 +55,7 @@ struct BinaryOptions {
 };
 
 class BigEndianText {
-public:
+  public:
     void line(std::string_view s) {
         out_ += s;
         out_ += '\n';
@@ -70,7 +70,7 @@ public:
     void end_block() { out_ += '\n'; }
     const std::string& text() const { return out_; }
 
-private:
+  private:
     std::string out_;
 };
 
@@ -191,7 +191,7 @@ std::string one_tet(const std::string& cell_data) {
 }
 
 class VtkReader : public ::testing::Test {
-protected:
+  protected:
     // Writes `text` as bad.vtk and expects read_vtk to reject it naming the file and `parts`.
     std::string rejects(const std::string& text, std::initializer_list<std::string_view> parts) {
         const std::string path = dir_.write("bad.vtk", text);

@@ -18,11 +18,12 @@ namespace fs = std::filesystem;
 
 // A folder with an (empty) mesh file that job files can point to.
 class JobSpecTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-job-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ =
+            fs::temp_directory_path() /
+            ("fibrecell-job-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+             "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(dir_);
         std::ofstream(dir_ / "part.msh") << "";
         std::ofstream(dir_ / "part_stress.txt") << "";
@@ -130,14 +131,16 @@ TEST_F(JobSpecTest, ErrorsNameTheKey) {
                 HasSubstr("regions.r.box.max: is required"));
     EXPECT_THAT(error(std::string(kMinimal) + "regions:\n  r: {ball: {}}\n"),
                 HasSubstr("regions.r: must have exactly one of box, cylinder, group"));
-    EXPECT_THAT(error(std::string(kMinimal) + "regions:\n  r: {cylinder: {point: [0,0,0], axis: [0,0,0], radius_mm: 1}}\n"),
+    EXPECT_THAT(error(std::string(kMinimal) +
+                      "regions:\n  r: {cylinder: {point: [0,0,0], axis: [0,0,0], radius_mm: 1}}\n"),
                 HasSubstr("regions.r.cylinder.axis: must not be the zero vector"));
 }
 
 TEST_F(JobSpecTest, StressAndLoadCaseAreExclusiveAndRegionsMustExist) {
     std::string both = kLoadCase;
     both.replace(both.find("  load_case:"), 0, "  stress: part_stress.txt\n");
-    EXPECT_THAT(error(both), HasSubstr("model.load_case: give either a stress file or a load case"));
+    EXPECT_THAT(error(both),
+                HasSubstr("model.load_case: give either a stress file or a load case"));
     std::string bad_support = kLoadCase;
     bad_support.replace(bad_support.find("[left]"), 6, "[lft]");
     EXPECT_THAT(error(bad_support), HasSubstr("model.load_case.supports: names region 'lft'"));

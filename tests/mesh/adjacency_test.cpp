@@ -45,14 +45,16 @@ TEST(Adjacency, VertexSharingNeighboursMatchBruteForce) {
     for (std::size_t t = 0; t < m.tets.size(); ++t) {
         std::vector<int> expected;
         for (std::size_t u = 0; u < m.tets.size(); ++u)
-            if (u != t && shared_vertices(m.tets[t], m.tets[u]) > 0) expected.push_back(static_cast<int>(u));
+            if (u != t && shared_vertices(m.tets[t], m.tets[u]) > 0)
+                expected.push_back(static_cast<int>(u));
         const auto got = g.neighbours(static_cast<int>(t));
         EXPECT_EQ(std::vector<int>(got.begin(), got.end()), expected) << "tet " << t;
     }
 }
 
 TEST(StructuredMesh, VolumeAndOrientation) {
-    const TetMesh m = structured_tet_mesh({.origin = {1, 2, 3}, .size = {3, 2, 1}, .cells = {3, 4, 2}});
+    const TetMesh m =
+        structured_tet_mesh({.origin = {1, 2, 3}, .size = {3, 2, 1}, .cells = {3, 4, 2}});
     EXPECT_EQ(m.tets.size(), 6u * 24);
     EXPECT_EQ(m.vertices.size(), 4u * 5 * 3);
     double volume = 0;

@@ -1,11 +1,11 @@
 // The field stage end to end: a job file pointing at a mesh with a known stress field, run through
 // the library and through the real `fibrecell plan` executable.
 
+#include "planner/plan/field_stage.hpp"
 #include "planner/io/read_model.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/mesh/structured_mesh.hpp"
-#include "planner/plan/field_stage.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,11 +21,11 @@ namespace fs = std::filesystem;
 namespace {
 
 class FieldStageTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         dir_ = fs::temp_directory_path() /
-               ("fibrecell-field-" + std::string(::testing::UnitTest::GetInstance()
-                                                     ->current_test_info()->name()));
+               ("fibrecell-field-" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -37,7 +37,9 @@ protected:
         mesh_ = structured_tet_mesh({.size = {20, 10, 2}, .cells = {10, 5, 1}});
         for (const Tet& t : mesh_.tets) {
             const double x = (mesh_.vertices[t[0]] + mesh_.vertices[t[1]] + mesh_.vertices[t[2]] +
-                              mesh_.vertices[t[3]]).x() / 4;
+                              mesh_.vertices[t[3]])
+                                 .x() /
+                             4;
             StressTensor s = StressTensor::Zero();
             s(0, 0) = x < 4 ? -50.0 : 50.0;
             stress_.push_back(s);
@@ -107,8 +109,8 @@ TEST_F(FieldStageTest, CommandLineWritesFieldVtkAndReport) {
     EXPECT_EQ(report["format"], "fibrecell.report/1");
     EXPECT_EQ(report["model"]["tets"], mesh_.tet_count());
     EXPECT_EQ(report["model"]["vertices"], mesh_.vertex_count());
-    for (const char* key : {"read", "fea", "principal", "mst_reorientation", "incompatible_removal",
-                            "total"})
+    for (const char* key :
+         {"read", "fea", "principal", "mst_reorientation", "incompatible_removal", "total"})
         EXPECT_TRUE(report["timings_s"][key].is_number()) << key;
     EXPECT_EQ(report["timings_s"]["fea"], 0.0);
 

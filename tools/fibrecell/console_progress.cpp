@@ -8,7 +8,9 @@ namespace fibrecell::tools {
 
 ConsoleProgress::ConsoleProgress() : tty_(isatty(STDERR_FILENO) == 1) {}
 
-ConsoleProgress::~ConsoleProgress() { finish(); }
+ConsoleProgress::~ConsoleProgress() {
+    finish();
+}
 
 planner::ProgressSink ConsoleProgress::sink() {
     return [this](std::string_view stage, double fraction) { update(stage, fraction); };

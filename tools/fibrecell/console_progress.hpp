@@ -10,15 +10,14 @@
 namespace fibrecell::tools {
 
 class ConsoleProgress {
-public:
+  public:
     ConsoleProgress();
     ~ConsoleProgress();
     planner::ProgressSink sink();
     void update(std::string_view stage, double fraction);
     void finish();  // closes the current stage line
 
-private:
-
+  private:
     bool tty_;
     std::string stage_;
     std::chrono::steady_clock::time_point stage_start_;

@@ -30,17 +30,20 @@ void print_summary(const planner::FieldStageResult& r, const std::string& out) {
     std::printf("model      %zu tets, %zu vertices\n", r.model.mesh.tet_count(),
                 r.model.mesh.vertex_count());
     if (r.fea)
-        std::printf("fea        %zu unknowns (%s), max displacement %.4f mm, reactions %.1f N "
-                    "against %.1f N applied\n",
-                    r.fea->dof_count, r.fea->solver.c_str(), r.fea->max_displacement_mm,
-                    r.fea->reaction_sum_n.norm(), r.fea->applied_sum_n.norm());
-    std::printf("field      %d component(s), %d vectors flipped by the MST, %zu undefined "
-                "(%.2f%%; other reading of Eq. 2: %.2f%%)\n",
-                r.mst.components, r.mst.flipped, r.removed, 100.0 * static_cast<double>(r.removed) / n,
-                100.0 * r.removed_fraction_other_rule);
-    std::printf("timings    read %.3f s, fea %.3f s, principal %.3f s, mst %.3f s, removal %.3f s, "
-                "total %.3f s\n",
-                t.read, t.fea, t.principal, t.mst_reorientation, t.incompatible_removal, t.total);
+        std::printf(
+            "fea        %zu unknowns (%s), max displacement %.4f mm, reactions %.1f N "
+            "against %.1f N applied\n",
+            r.fea->dof_count, r.fea->solver.c_str(), r.fea->max_displacement_mm,
+            r.fea->reaction_sum_n.norm(), r.fea->applied_sum_n.norm());
+    std::printf(
+        "field      %d component(s), %d vectors flipped by the MST, %zu undefined "
+        "(%.2f%%; other reading of Eq. 2: %.2f%%)\n",
+        r.mst.components, r.mst.flipped, r.removed, 100.0 * static_cast<double>(r.removed) / n,
+        100.0 * r.removed_fraction_other_rule);
+    std::printf(
+        "timings    read %.3f s, fea %.3f s, principal %.3f s, mst %.3f s, removal %.3f s, "
+        "total %.3f s\n",
+        t.read, t.fea, t.principal, t.mst_reorientation, t.incompatible_removal, t.total);
     std::printf("wrote      %s/field.vtk, %s/report.json\n", out.c_str(), out.c_str());
 }
 
@@ -60,9 +63,9 @@ int run_plan(const PlanArgs& args) {
             planner::StepControl control{progress.sink(), nullptr};
             result = planner::run_field_stage(job, control);
             progress.update("write", 0.0);
-            planner::write_field_vtk(
-                args.out + "/field.vtk", result.model.mesh,
-                {&*result.model.stress, &result.field.sigma_e, &result.field.v_e, &result.v_defined});
+            planner::write_field_vtk(args.out + "/field.vtk", result.model.mesh,
+                                     {&*result.model.stress, &result.field.sigma_e,
+                                      &result.field.v_e, &result.v_defined});
             result.timings.total = clock.elapsed();
             planner::write_json_file(args.out + "/report.json",
                                      planner::field_stage_report(job, result));
