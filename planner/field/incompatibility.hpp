@@ -18,6 +18,8 @@ enum class IncompatibilityRule {
     all_neighbours,
     // The looser reading: undefined when v_e.v_e* <= eta for ANY neighbour.
     any_neighbour,
+    // Between the two: undefined when v_e.v_e* <= eta for MORE THAN HALF of the neighbours.
+    majority,
 };
 
 std::string_view to_string(IncompatibilityRule rule);

@@ -115,9 +115,10 @@ PlannerSpec read_planner(Section s) {
     p.strategy = strategy == "field" ? Strategy::field : Strategy::contour_zigzag;
     p.mu = s.number("mu", p.mu, 0, kBig, true);
     p.eta = s.number("eta", p.eta, -1, 1);
-    p.incompatibility_rule = s.choice("incompatibility_rule", "all", {"all", "any"}) == "all"
-                                 ? IncompatibilityRule::all_neighbours
-                                 : IncompatibilityRule::any_neighbour;
+    const std::string rule = s.choice("incompatibility_rule", "all", {"all", "majority", "any"});
+    p.incompatibility_rule = rule == "all"        ? IncompatibilityRule::all_neighbours
+                             : rule == "majority" ? IncompatibilityRule::majority
+                                                  : IncompatibilityRule::any_neighbour;
     p.p = s.number("p", p.p, 0, 10);
     p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
     p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);

@@ -95,14 +95,16 @@ FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control)
         static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
     out.timings.incompatible_removal = clock.lap();
 
-    // The other reading of Eq. 2, measured for the report (not timed as part of the stage).
-    removal.rule = removal.rule == IncompatibilityRule::all_neighbours
-                       ? IncompatibilityRule::any_neighbour
-                       : IncompatibilityRule::all_neighbours;
-    const auto other = compatible_directions(out.field.v_e, around, removal);
-    out.removed_fraction_other_rule =
-        static_cast<double>(std::count(other.begin(), other.end(), 0)) /
-        static_cast<double>(std::max<std::size_t>(1, other.size()));
+    // Every reading of Eq. 2, measured for the report (not timed as part of the stage).
+    for (auto rule : {IncompatibilityRule::all_neighbours, IncompatibilityRule::majority,
+                      IncompatibilityRule::any_neighbour}) {
+        const auto d = rule == removal.rule
+                           ? out.v_defined
+                           : compatible_directions(out.field.v_e, around, {removal.eta, rule});
+        out.removed_fraction_by_rule[static_cast<int>(rule)] =
+            static_cast<double>(std::count(d.begin(), d.end(), 0)) /
+            static_cast<double>(std::max<std::size_t>(1, d.size()));
+    }
     clock.lap();
 
     out.timings.total = clock.elapsed();

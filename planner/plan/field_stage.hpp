@@ -8,6 +8,7 @@
 #include "planner/mesh/tet_mesh.hpp"
 #include "planner/progress.hpp"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -38,8 +39,9 @@ struct FieldStageResult {
     std::vector<std::uint8_t> v_defined;  // 0 where incompatibility removal undefined v_e
     MstReorientationResult mst;
     std::size_t removed = 0;  // elements with v_e undefined
-    // The removal fraction under the other reading of Eq. 2, for comparison in the report.
-    double removed_fraction_other_rule = 0;
+    // The fraction each reading of Eq. 2 would undefine, indexed by IncompatibilityRule, so the
+    // report can compare them on every part.
+    std::array<double, 3> removed_fraction_by_rule = {0, 0, 0};
     std::optional<FeaSummary> fea;
     FieldStageTimings timings;
 };

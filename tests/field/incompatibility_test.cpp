@@ -83,3 +83,20 @@ TEST(Incompatibility, ElementAgreeingWithOneNeighbourIsKeptUnderThePapersRule) {
         undefined(compatible_directions(c.v, c.around, {0.5, IncompatibilityRule::any_neighbour}));
     EXPECT_TRUE(any.contains(a) && any.contains(b));
 }
+
+TEST(Incompatibility, MajorityRuleNeedsMoreThanHalfTheNeighboursToDisagree) {
+    Case c;
+    const int odd = 40;
+    c.v[odd] = Eigen::Vector3d::UnitY();
+    const auto around = c.around.neighbours(odd);
+    // Turn just under half of the odd element's neighbours to y as well: it still disagrees
+    // with the majority.
+    const std::size_t turned = (around.size() - 1) / 2;
+    for (std::size_t i = 0; i < turned; ++i) c.v[around[i]] = Eigen::Vector3d::UnitY();
+    auto rule = IncompatibilityOptions{0.5, IncompatibilityRule::majority};
+    EXPECT_TRUE(undefined(compatible_directions(c.v, c.around, rule)).contains(odd));
+    // One more and exactly half or more agree: kept.
+    c.v[around[turned]] = Eigen::Vector3d::UnitY();
+    c.v[around[turned + 1]] = Eigen::Vector3d::UnitY();
+    EXPECT_FALSE(undefined(compatible_directions(c.v, c.around, rule)).contains(odd));
+}

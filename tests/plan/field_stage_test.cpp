@@ -113,6 +113,9 @@ TEST_F(FieldStageTest, CommandLineWritesFieldVtkAndReport) {
          {"read", "fea", "principal", "mst_reorientation", "incompatible_removal", "total"})
         EXPECT_TRUE(report["timings_s"][key].is_number()) << key;
     EXPECT_EQ(report["timings_s"]["fea"], 0.0);
+    // A uniform field: no reading of Eq. 2 undefines anything.
+    for (const char* rule : {"all", "majority", "any"})
+        EXPECT_EQ(report["field"]["v_undefined_fraction_by_rule"][rule], 0.0) << rule;
 
     // field.vtk reads back with the mesh and the stress it was given.
     const VolumeModel back = read_volume_model((out / "field.vtk").string());
