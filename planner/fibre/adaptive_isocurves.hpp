@@ -1,0 +1,31 @@
+#pragma once
+// Adaptive isocurve extraction (paper Section 4.3, Steps 1-7): as many isocurves of s as fit
+// with every pair of neighbouring curves more than W apart.
+
+#include "planner/fibre/isocurves.hpp"
+#include "planner/layers/layer_mesh.hpp"
+
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct AdaptiveIsocurveOptions {
+    double spacing_mm = 1.0;  // W: neighbouring fibre paths must be further apart than this
+    int max_curves = 100000;  // guard against a runaway Step 4 on a degenerate field
+    // A piece whose s varies less than this is treated as carrying no tension (no curves).
+    double min_range = 1e-9;
+};
+
+struct AdaptiveIsocurves {
+    std::vector<Polyline> curves;  // level = isovalue index within the piece
+    int count = 0;                 // n, the number of isovalues finally used
+    double geodesic_span_mm = 0;   // D of Step 2
+    double min_distance_mm = 0;    // d of the final set (or W*2 when nothing is near)
+    int extractions = 0;           // how often Steps 3/5 ran
+};
+
+// One connected piece of a layer (see split_pieces) with its scalar field s (#V).
+AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<double>& s,
+                                     const AdaptiveIsocurveOptions& options = {});
+
+}  // namespace fibrecell::planner

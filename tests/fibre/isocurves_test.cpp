@@ -1,0 +1,150 @@
+#include "planner/fibre/isocurves.hpp"
+#include "planner/fibre/adaptive_isocurves.hpp"
+#include "planner/fibre/curve_spacing.hpp"
+#include "planner/fibre/layer_pieces.hpp"
+#include "planner/fibre/scalar_field.hpp"
+
+#include "layer_test_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fibrecell::planner;
+using fibrecell::planner::testing::centre;
+using fibrecell::planner::testing::grid_layer;
+
+namespace {
+
+std::vector<double> field_of(const LayerMesh& m, double (*f)(const Eigen::Vector2d&)) {
+    std::vector<double> s;
+    for (const auto& v : m.vertices) s.push_back(f(v));
+    return s;
+}
+
+// Distance between neighbouring horizontal fibres, from their y positions.
+std::vector<double> sorted_heights(const std::vector<Polyline>& curves) {
+    std::vector<double> ys;
+    for (const auto& c : curves) ys.push_back(c.points.front().y());
+    std::sort(ys.begin(), ys.end());
+    return ys;
+}
+
+}  // namespace
+
+TEST(Isocurves, LevelLinesOfALinearFieldAreStraightAndSpanTheLayer) {
+    const LayerMesh m = grid_layer(30, 10, 15, 5);
+    const auto s = field_of(m, [](const Eigen::Vector2d& p) { return 0.3 * p.x() + p.y(); });
+    const auto curves = extract_isocurves(m, s, {2.5, 7.0});
+    ASSERT_EQ(curves.size(), 2u);
+    for (const auto& c : curves) {
+        EXPECT_FALSE(c.closed);
+        const double iso = c.level == 0 ? 2.5 : 7.0;
+        for (const auto& p : c.points) EXPECT_NEAR(0.3 * p.x() + p.y(), iso, 1e-9);
+        // From boundary to boundary: both ends on the rectangle's edges.
+        for (const auto& end : {c.points.front(), c.points.back()}) {
+            const double to_edge = std::min({end.x(), 30 - end.x(), end.y(), 10 - end.y()});
+            EXPECT_NEAR(to_edge, 0.0, 1e-9);
+        }
+    }
+}
+
+TEST(Isocurves, ClosedLoopsAroundAPeakAndCurvesThroughVertices) {
+    const LayerMesh m = grid_layer(20, 20, 20, 20);
+    const auto s =
+        field_of(m, [](const Eigen::Vector2d& p) { return -(p - Eigen::Vector2d(10, 10)).norm(); });
+    const auto loops = extract_isocurves(m, s, {-5.0});
+    ASSERT_EQ(loops.size(), 1u);
+    EXPECT_TRUE(loops[0].closed);
+    EXPECT_NEAR(polyline_length(loops[0]), 2 * M_PI * 5, 0.5);
+
+    // An isovalue hitting a whole row of vertices: one clean curve, no duplicate points.
+    const auto y = field_of(m, [](const Eigen::Vector2d& p) { return p.y(); });
+    const auto row = extract_isocurves(m, y, {5.0});
+    ASSERT_EQ(row.size(), 1u);
+    EXPECT_EQ(row[0].points.size(), 21u);
+    EXPECT_NEAR(polyline_length(row[0]), 20.0, 1e-9);
+}
+
+TEST(CurveSpacing, MeasuresOnlyNeighbouringLevels) {
+    Polyline a{{{0, 0}, {10, 0}}, false, 0};
+    Polyline b{{{0, 1.5}, {10, 1.5}}, false, 1};
+    Polyline c{{{0, 1.6}, {10, 1.6}}, false, 3};  // close to b, but not a neighbour level
+    EXPECT_NEAR(min_neighbour_distance({a, b, c}, 5.0), 1.5, 1e-12);
+    EXPECT_NEAR(min_neighbour_distance({a, b}, 1.0), 1.0, 1e-12);  // capped
+    Polyline tilted{{{5, 0.7}, {6, 3}}, false, 1};                 // its end comes within 0.7 of a
+    EXPECT_NEAR(min_neighbour_distance({a, tilted}, 5.0), 0.7, 1e-12);
+}
+
+TEST(AdaptiveIsocurves, UniformTensionGivesStraightFibresSpacedJustOverW) {
+    const LayerMesh m = grid_layer(30, 10, 30, 20);
+    const std::vector<Eigen::Vector2d> u(m.triangles.size(), Eigen::Vector2d(5.0, 0.0));
+    const auto s = scalar_field(m, u);
+    const AdaptiveIsocurves r = adaptive_isocurves(m, s, {.spacing_mm = 1.0});
+    EXPECT_NEAR(r.geodesic_span_mm, 10.0, 1e-9);
+    const auto ys = sorted_heights(r.curves);
+    ASSERT_EQ(static_cast<int>(ys.size()), r.count);
+    EXPECT_GE(r.count, 8);
+    for (std::size_t i = 1; i < ys.size(); ++i) {
+        EXPECT_GE(ys[i] - ys[i - 1], 1.0 - 1e-9);
+        EXPECT_LE(ys[i] - ys[i - 1], 1.25);
+    }
+    for (const auto& c : r.curves)
+        for (const auto& p : c.points) EXPECT_NEAR(p.y(), c.points.front().y(), 1e-9);  // straight
+}
+
+TEST(AdaptiveIsocurves, ZeroExponentGivesUniformSpacingWhateverTheStress) {
+    // p = 0 makes |u| = 1 everywhere: the stress level no longer changes the spacing.
+    const LayerMesh m = grid_layer(20, 12, 20, 24);
+    const std::vector<Eigen::Vector2d> u(m.triangles.size(), Eigen::Vector2d(1.0, 0.0));
+    const auto ys = sorted_heights(adaptive_isocurves(m, scalar_field(m, u)).curves);
+    ASSERT_GE(ys.size(), 2u);
+    for (std::size_t i = 2; i < ys.size(); ++i) EXPECT_NEAR(ys[i] - ys[i - 1], ys[1] - ys[0], 1e-9);
+}
+
+TEST(AdaptiveIsocurves, FibresFollowAQuarterTurn) {
+    // Tension running around a corner: the fibres are quarter circles about it.
+    const LayerMesh m = grid_layer(
+        30, 30, 45, 45, [](const Eigen::Vector2d& c) { return c.norm() > 10 && c.norm() < 28; });
+    std::vector<Eigen::Vector2d> u;
+    for (int f = 0; f < static_cast<int>(m.triangles.size()); ++f) {
+        const Eigen::Vector2d c = centre(m, f);
+        u.emplace_back(Eigen::Vector2d(-c.y(), c.x()).normalized());
+    }
+    const AdaptiveIsocurves r = adaptive_isocurves(m, scalar_field(m, u), {.spacing_mm = 2.0});
+    ASSERT_GE(r.count, 4);
+    EXPECT_GT(r.min_distance_mm, 2.0);
+    for (const auto& c : r.curves) {
+        const double r0 = c.points.front().norm();
+        for (const auto& p : c.points) EXPECT_NEAR(p.norm(), r0, 0.3);  // constant radius
+    }
+}
+
+TEST(AdaptiveIsocurves, NoTensionGivesNoFibres) {
+    const LayerMesh m = grid_layer(10, 10, 5, 5);
+    const std::vector<double> flat(m.vertices.size(), 0.0);
+    const AdaptiveIsocurves r = adaptive_isocurves(m, flat);
+    EXPECT_TRUE(r.curves.empty());
+    EXPECT_EQ(r.count, 0);
+}
+
+TEST(LayerPieces, SplitsSeparateRegionsAndMeasuresEdgePaths) {
+    const LayerMesh m = grid_layer(
+        30, 10, 15, 5, [](const Eigen::Vector2d& c) { return c.x() < 10 || c.x() > 20; });
+    const auto pieces = split_pieces(m);
+    ASSERT_EQ(pieces.size(), 2u);
+    EXPECT_EQ(pieces[0].mesh.triangles.size() + pieces[1].mesh.triangles.size(),
+              m.triangles.size());
+    for (const auto& p : pieces) EXPECT_EQ(p.mesh.vertices.size(), 6u * 6);
+    // Dijkstra along edges of a 2 mm grid: never shorter than the straight line, and exact
+    // along a grid line.
+    const LayerMesh& left = pieces[0].mesh;
+    const auto origin =
+        std::find(left.vertices.begin(), left.vertices.end(), Eigen::Vector2d(0, 0));
+    ASSERT_NE(origin, left.vertices.end());
+    const auto d = edge_distances(left, {static_cast<int>(origin - left.vertices.begin())});
+    for (std::size_t v = 0; v < left.vertices.size(); ++v) {
+        EXPECT_GE(d[v], left.vertices[v].norm() - 1e-9);
+        if (left.vertices[v].y() == 0) EXPECT_NEAR(d[v], left.vertices[v].x(), 1e-9);
+    }
+}
