@@ -145,6 +145,8 @@ TEST(LayerPieces, SplitsSeparateRegionsAndMeasuresEdgePaths) {
     const auto d = edge_distances(left, {static_cast<int>(origin - left.vertices.begin())});
     for (std::size_t v = 0; v < left.vertices.size(); ++v) {
         EXPECT_GE(d[v], left.vertices[v].norm() - 1e-9);
-        if (left.vertices[v].y() == 0) EXPECT_NEAR(d[v], left.vertices[v].x(), 1e-9);
+        if (left.vertices[v].y() == 0) {
+            EXPECT_NEAR(d[v], left.vertices[v].x(), 1e-9);
+        }
     }
 }
