@@ -1,0 +1,54 @@
+#pragma once
+// Field-based fibre paths of one CCF layer (paper Sections 4.2-4.3): the in-plane field, the
+// scalar field per piece, adaptive isocurves, and the cutter's minimum length.
+
+#include "planner/fibre/layer_field.hpp"
+#include "planner/layers/layer_mesh.hpp"
+#include "planner/toolpaths/toolpath.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct FibreLayerOptions {
+    LayerFieldOptions field;         // smoothing iterations, p
+    double spacing_mm = 1.0;         // W
+    double cutter_distance_mm = 42;  // fibre paths shorter than this cannot be laid
+    // A piece none of whose tets carries more tension than this gets no fibres: isovalues are
+    // relative to the piece's own range, so without this a piece with only the rule-3 marker
+    // (sigma_e = 1e-5) would be filled like a loaded one.
+    double min_tension = 1e-4;
+};
+
+struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
+    double vector_field = 0;
+    double scalar_field = 0;
+    double extraction = 0;
+    double connection = 0;
+};
+
+struct FibreLayer {
+    std::vector<Toolpath> paths;        // role fibre, in print order
+    LayerField field;                   // per triangle of the layer (for previews)
+    std::size_t dropped_short = 0;      // isocurves shorter than the cutter distance
+    double min_spacing_mm = 0;          // smallest neighbour distance over the pieces
+    std::vector<std::string> warnings;  // e.g. "no tension in this layer"
+    FibreLayerTimings timings;
+};
+
+// v_e, sigma_e, v_defined: per tet, v_e in the frame of `layer` (placed).
+FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
+                            const std::vector<double>& sigma_e,
+                            const std::vector<std::uint8_t>& v_defined,
+                            const FibreLayerOptions& options = {});
+
+// Orders open paths (reversing them where that helps) and closed ones greedily by the nearest
+// start to the current position, beginning at `from`: keeps travel between paths short.
+std::vector<Toolpath> order_for_travel(std::vector<Toolpath> paths,
+                                       const Eigen::Vector2d& from = Eigen::Vector2d::Zero());
+
+}  // namespace fibrecell::planner
