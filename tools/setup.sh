@@ -15,7 +15,7 @@ packages=(
     g++ cmake ninja-build pkg-config
     libeigen3-dev libboost-dev libboost-graph-dev libsuitesparse-dev
     libopenblas0-pthread  # CHOLMOD factorises ~4x faster than with the reference BLAS
-    libspdlog-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+    libspdlog-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpolyclipping-dev
     libmodbus-dev libsystemd-dev
     libgtest-dev libgmock-dev
 )

@@ -4,38 +4,13 @@
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/scalar_field.hpp"
 #include "planner/stopwatch.hpp"
+#include "planner/toolpaths/path_order.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace fibrecell::planner {
-
-std::vector<Toolpath> order_for_travel(std::vector<Toolpath> paths, const Eigen::Vector2d& from) {
-    std::vector<Toolpath> ordered;
-    ordered.reserve(paths.size());
-    std::vector<char> done(paths.size(), 0);
-    Eigen::Vector2d at = from;
-    for (std::size_t k = 0; k < paths.size(); ++k) {
-        std::size_t best = 0;
-        bool reverse = false;
-        double best_d = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < paths.size(); ++i) {
-            if (done[i] || paths[i].points.empty()) continue;
-            const double d_front = (paths[i].points.front() - at).squaredNorm();
-            if (d_front < best_d) best_d = d_front, best = i, reverse = false;
-            const double d_back = (paths[i].points.back() - at).squaredNorm();
-            if (!paths[i].closed && d_back < best_d) best_d = d_back, best = i, reverse = true;
-        }
-        if (!std::isfinite(best_d)) break;
-        done[best] = 1;
-        Toolpath p = std::move(paths[best]);
-        if (reverse) std::reverse(p.points.begin(), p.points.end());
-        at = p.closed ? p.points.front() : p.points.back();
-        ordered.push_back(std::move(p));
-    }
-    return ordered;
-}
 
 FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
                             const std::vector<double>& sigma_e,
@@ -78,7 +53,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
                                ": no fibre path (no usable tension, or every isocurve shorter "
                                "than the cutter distance)");
     clock.lap();
-    out.paths = order_for_travel(std::move(paths));
+    out.paths = order_nearest(std::move(paths), Eigen::Vector2d::Zero());
     out.timings.connection = clock.lap();
     if (!std::isfinite(out.min_spacing_mm)) out.min_spacing_mm = 0;
     return out;

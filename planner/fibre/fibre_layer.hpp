@@ -46,9 +46,4 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
                             const std::vector<std::uint8_t>& v_defined,
                             const FibreLayerOptions& options = {});
 
-// Orders open paths (reversing them where that helps) and closed ones greedily by the nearest
-// start to the current position, beginning at `from`: keeps travel between paths short.
-std::vector<Toolpath> order_for_travel(std::vector<Toolpath> paths,
-                                       const Eigen::Vector2d& from = Eigen::Vector2d::Zero());
-
 }  // namespace fibrecell::planner

@@ -51,16 +51,3 @@ TEST(FibreLayer, NoTensionGivesNoFibresAndAWarning) {
     EXPECT_TRUE(r.paths.empty());
     EXPECT_EQ(r.warnings.size(), 1u);
 }
-
-TEST(OrderForTravel, VisitsNearestFirstAndReversesOpenPaths) {
-    std::vector<Toolpath> paths = {
-        {PathRole::fibre, false, {{10, 0}, {20, 0}}},
-        {PathRole::fibre, false, {{5, 1}, {0, 1}}},  // its end is nearest the origin
-        {PathRole::fibre, true, {{30, 0}, {31, 0}, {31, 1}}},
-    };
-    const auto ordered = order_for_travel(paths);
-    ASSERT_EQ(ordered.size(), 3u);
-    EXPECT_EQ(ordered[0].points.front(), Eigen::Vector2d(0, 1));  // reversed
-    EXPECT_EQ(ordered[1].points.front(), Eigen::Vector2d(10, 0));
-    EXPECT_TRUE(ordered[2].closed);
-}

@@ -1,0 +1,46 @@
+#pragma once
+// The `extruder:` section of the cell YAML: the GT2560 link and what the extruder controller
+// needs to turn print events into Marlin commands. Units are in the key names.
+
+#include "config/yaml_section.hpp"
+#include "drivers/marlin/marlin_link.hpp"
+
+#include <string>
+
+namespace fibrecell::drivers {
+
+enum class CutMethod {
+    pin,      // M400, then M42 P<pin> S255 / S0 (DIRECT_PIN_CONTROL; relay or MOSFET)
+    servo,    // M400, then M280 P<index> S<angle>
+    spindle,  // M3 / M5: SPINDLE_FEATURE, Marlin synchronises them with the planner itself
+};
+
+struct CutterConfig {
+    CutMethod method = CutMethod::pin;
+    int pin = 11;                 // GT2560 A+/V3 servo header D11
+    int servo_index = 0;
+    double cut_angle_deg = 90;
+    double open_angle_deg = 0;
+    int hold_ms = 200;            // blade closed this long
+};
+
+struct ExtruderConfig {
+    marlin::MarlinLinkConfig link;
+    int pla_tool = 0;                     // E0
+    int ccf_tool = 1;                     // E1
+    double pla_temp_c = 200;
+    double ccf_temp_c = 250;
+    double filament_diameter_mm = 1.75;   // PLA
+    double retract_mm = 1.0;
+    double retract_speed_mm_s = 25;
+    double cutter_distance_mm = 42;       // cutter to nozzle tip: the thread feed at a path start
+    double thread_speed_mm_s = 5;
+    double max_extrusion_length_mm = 200; // Marlin EXTRUDE_MAXLENGTH: longer moves are split
+    double max_feed_mm_s = 50;            // highest E feed rate accepted
+    CutterConfig cutter;
+};
+
+// Reads and checks the section (bounds, unknown keys); throws config::ConfigError naming the key.
+ExtruderConfig load_extruder_config(config::Section section);
+
+}  // namespace fibrecell::drivers

@@ -1,0 +1,50 @@
+#pragma once
+// A serial port on its POSIX descriptor, configured with termios and driven by Boost.Asio:
+// raw 8N1, standard rates and 250000 (termios2/BOTHER), exclusive access, HUPCL chosen on
+// purpose. Modem-control calls are best-effort: pseudo-terminals reject them (marlin-notes 2.5).
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/posix/stream_descriptor.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace fibrecell::drivers::marlin {
+
+class SerialError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SerialSettings {
+    std::string device;             // /dev/serial/by-id/... or /dev/ttyUSB0
+    int baud_rate = 250000;
+    // HUPCL drops DTR on close, so the next open resets an Arduino board. Off by default: a
+    // daemon restart then does not reboot the board mid-job (it still resets on first open).
+    bool hangup_on_close = false;
+    bool exclusive = true;          // TIOCEXCL: a second opener gets EBUSY
+};
+
+class SerialPort {
+  public:
+    explicit SerialPort(boost::asio::io_context& io) : stream_(io) {}
+    ~SerialPort() { close(); }
+
+    // Opens and configures the port; throws SerialError naming the device and the step.
+    void open(const SerialSettings& settings);
+    void close();
+    bool is_open() const { return stream_.is_open(); }
+
+    // Best effort (false when the device refuses, as ptys do).
+    bool set_dtr(bool on);
+
+    boost::asio::posix::stream_descriptor& stream() { return stream_; }
+
+  private:
+    boost::asio::posix::stream_descriptor stream_;
+};
+
+// Sets a non-standard rate through termios2 BOTHER (Linux); false when unsupported.
+bool set_custom_baud(int fd, int baud_rate);
+
+}  // namespace fibrecell::drivers::marlin

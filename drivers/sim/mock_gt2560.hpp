@@ -1,0 +1,95 @@
+#pragma once
+// A GT2560 running Marlin, simulated behind a pseudo-terminal (openpty): the driver opens the
+// slave side exactly like /dev/ttyUSB0. It follows the firmware as marlin-notes 1.1-1.10 and 5.3
+// describe: reset on open and boot banner, line-number/checksum/resend rules, a 128-byte RX ring
+// that drops bytes when full, a 4-line command buffer, a 16-block planner whose moves take
+// (scaled) real time, two hotends and a bed with a first-order thermal model, blocking waits with
+// temperature and busy lines, pin/servo events, M112 kill and the emergency parser.
+//
+// Faults are injected from a control channel (these methods; the mock-gt2560 tool maps its stdin
+// onto them), never in-band G-code. All times in the logs are simulated seconds.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fibrecell::drivers::sim {
+
+struct MockGt2560Options {
+    double time_scale = 1.0;          // simulated seconds per real second
+    double bootloader_s = 1.0;        // silence after a reset before `start`
+    bool reset_on_open = true;        // DTR auto-reset: every open of the port reboots the board
+    bool resend_ok = true;            // bugfix-2.1.x prints ok after Resend; older builds do not
+    bool emergency_parser = true;     // M108/M112/M410 act as bytes arrive
+    bool advanced_ok = false;         // ok N<n> P<planner free> B<buffer free>
+    int rx_buffer_bytes = 128;
+    int command_buffer_lines = 4;     // BUFSIZE
+    int planner_blocks = 16;          // BLOCK_BUFFER_SIZE
+    double ambient_c = 22.0;
+    double hotend_tau_s = 40.0;       // first-order time constants
+    double bed_tau_s = 90.0;
+    double temp_window_c = 1.0;       // TEMP_WINDOW / TEMP_BED_WINDOW
+    double residency_s = 10.0;        // TEMP_RESIDENCY_TIME
+    double keepalive_s = 2.0;         // DEFAULT_KEEPALIVE_INTERVAL
+    std::string link_path;            // optional stable symlink to the slave (survives replug)
+};
+
+struct ExecutedCommand {
+    double t_s = 0;                   // simulated time the handler returned
+    std::optional<std::int64_t> line; // its N, when it was numbered
+    std::string text;                 // the command without N and checksum
+};
+
+// M42 / M280 / M3 / M5 as they took effect, with the planner state at that moment.
+struct PinEvent {
+    double t_s = 0;
+    std::string command;              // "M42 P11 S255"
+    int planner_blocks_pending = 0;   // moves queued or running when the pin changed
+    double last_move_end_s = 0;       // end of the latest move ever queued
+};
+
+class MockGt2560 {
+  public:
+    explicit MockGt2560(MockGt2560Options options = {});
+    ~MockGt2560();
+    MockGt2560(const MockGt2560&) = delete;
+    MockGt2560& operator=(const MockGt2560&) = delete;
+
+    // The device path for the driver: the symlink when configured, else /dev/pts/N.
+    std::string port_path() const;
+    double sim_now_s() const;
+
+    // Fault injection, keyed by the host's line number K (each fires once).
+    void corrupt_line(std::int64_t k);      // one byte flipped: checksum error
+    void drop_line(std::int64_t k);         // the whole line vanishes
+    void duplicate_line(std::int64_t k);    // the line is processed twice
+    void swallow_ok(std::int64_t k);        // executed, ok never sent
+    void delay_ok(std::int64_t k, double sim_s);
+    void garble_next_resend();              // the next Resend carries a wrong number
+    void reset_at_line(std::int64_t k);     // brown-out when line K arrives (NULs, then boot)
+    void reset_now();
+    void go_silent(bool silent);            // ignore input, send nothing
+    void unplug();                          // close the pty master (cable pull)
+    void replug();                          // a new pty behind the same link_path; boots on open
+    void thermal_runaway(int heater);       // 0, 1 = hotends, 2 = bed
+    void send_action(const std::string& action);  // "//action:<action>"
+
+    // Observation.
+    std::vector<ExecutedCommand> executed() const;
+    std::size_t executed_count() const;
+    std::vector<PinEvent> pin_events() const;
+    double temperature_c(int heater) const;
+    bool killed() const;
+    std::uint64_t rx_bytes_dropped() const;
+    // Waits until at least `n` commands have executed; false on timeout (real time).
+    bool wait_for_executed(std::size_t n, std::chrono::milliseconds timeout) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fibrecell::drivers::sim

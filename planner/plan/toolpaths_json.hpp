@@ -1,0 +1,35 @@
+#pragma once
+// toolpaths.json of the plan directory (contracts.md): every layer, every path, in print order,
+// in the model frame [mm].
+
+#include "planner/toolpaths/toolpath.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fibrecell::planner {
+
+// The format tag written and required by the reader.
+inline constexpr std::string_view toolpaths_format = "fibrecell.toolpaths/1";
+
+struct ToolpathsFile {
+    std::string strategy;  // "field" or "contour-zigzag"
+    std::vector<ToolpathLayer> layers;
+};
+
+// The document as text: one line per path, coordinates rounded to 1e-4 mm and printed in their
+// shortest form. Throws std::invalid_argument on a non-finite number.
+std::string toolpaths_json_text(std::string_view strategy,
+                                const std::vector<ToolpathLayer>& layers);
+
+// Writes toolpaths.json to `path` through a temporary file and a rename, so that a reader never
+// sees a half-written file. Throws std::runtime_error naming the path.
+void write_toolpaths_json(const std::string& path, std::string_view strategy,
+                          const std::vector<ToolpathLayer>& layers);
+
+// Reads a toolpaths.json back. Throws InputError naming the file and the offending key
+// ("layers[2].paths[5].role: unknown role 'x'") on anything that does not follow the format.
+ToolpathsFile read_toolpaths_json(const std::string& path);
+
+}  // namespace fibrecell::planner

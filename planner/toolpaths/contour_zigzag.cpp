@@ -1,0 +1,50 @@
+#include "planner/toolpaths/contour_zigzag.hpp"
+
+#include "planner/toolpaths/contour_fill.hpp"
+#include "planner/toolpaths/path_order.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fibrecell::planner {
+
+ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner) {
+    ContourZigzagOptions options;
+    options.fibre_spacing_mm = planner.fibre_spacing_mm;
+    options.cutter_distance_mm = planner.cutter_distance_mm;
+    return options;
+}
+
+double contour_zigzag_angle_deg(int ccf_layer, const ContourZigzagOptions& options) {
+    return options.base_angle_deg + options.angle_step_deg * ccf_layer;
+}
+
+FibreLayerPaths contour_zigzag_paths(const LayerOutline& outline, int ccf_layer,
+                                     const ContourZigzagOptions& options) {
+    if (!(options.cutter_distance_mm >= 0) || !std::isfinite(options.cutter_distance_mm))
+        throw std::invalid_argument("contour-zigzag cutter_distance_mm must not be negative");
+    if (!(options.fibre_spacing_mm > 0) || !std::isfinite(options.fibre_spacing_mm))
+        throw std::invalid_argument("contour-zigzag fibre_spacing_mm (W) must be positive");
+    if (options.boundary_rings < 0)
+        throw std::invalid_argument("contour-zigzag boundary_rings must not be negative");
+    ContourFillOptions fill;
+    fill.pitch_mm = options.fibre_spacing_mm;
+    fill.rings = options.boundary_rings;
+    fill.angle_deg = contour_zigzag_angle_deg(ccf_layer, options);
+    fill.ring_role = PathRole::fibre_boundary;
+    fill.fill_role = PathRole::fibre;
+    fill.max_link_spacings = options.max_link_spacings;
+    fill.arc_tolerance_mm = options.arc_tolerance_mm;
+    fill.start_mm = options.start_mm;
+
+    FibreLayerPaths result;
+    for (Toolpath& path : contour_fill(outline, fill)) {
+        if (path_length(path) < options.cutter_distance_mm)
+            ++result.dropped_short;
+        else
+            result.paths.push_back(std::move(path));
+    }
+    return result;
+}
+
+}  // namespace fibrecell::planner

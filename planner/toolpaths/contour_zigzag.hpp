@@ -1,0 +1,44 @@
+#pragma once
+// The load-independent baseline fibre strategy `contour-zigzag` (product.md): boundary-conformal
+// fibre rings plus a zigzag fibre fill, as commercial fibre slicers do; paths shorter than the
+// cutter distance cannot be laid and are dropped.
+
+#include "planner/job/job_spec.hpp"
+#include "planner/layers/layer_mesh.hpp"
+#include "planner/toolpaths/toolpath.hpp"
+
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct ContourZigzagOptions {
+    double fibre_spacing_mm = 1.0;    // W: ring pitch and zigzag spacing
+    int boundary_rings = 2;           // fibre-boundary rings per island
+    double base_angle_deg = 0;        // zigzag direction of CCF layer 0, ccw from +x
+    double angle_step_deg = 45;       // turn of the zigzag direction per CCF layer
+    double cutter_distance_mm = 42;   // shorter paths are dropped
+    double max_link_spacings = 4;     // longest boundary link in the zigzag [W]
+    double arc_tolerance_mm = 0.002;  // round joins of the offsets
+    Eigen::Vector2d start_mm{0, 0};   // nozzle before the layer: ordering starts here
+};
+
+// The options a job asks for (planner.fibre_spacing_mm, planner.cutter_distance_mm).
+ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner);
+
+// Zigzag direction [deg] of CCF layer `ccf_layer` (0-based count of CCF layers).
+double contour_zigzag_angle_deg(int ccf_layer, const ContourZigzagOptions& options);
+
+struct FibreLayerPaths {
+    std::vector<Toolpath> paths;  // print order
+    int dropped_short = 0;        // paths shorter than the cutter distance, left out
+};
+
+// `outline` [mm] of the layer. Per island: fibre-boundary rings (closed) at W/2 + i*W inside the
+// outline, then fibre zigzag paths (open) at spacing W over the outline inset by
+// boundary_rings*W; then every path shorter than cutter_distance_mm is dropped and counted.
+// Throws std::invalid_argument on a non-positive spacing, negative rings or cutter distance, or
+// a bad outline.
+FibreLayerPaths contour_zigzag_paths(const LayerOutline& outline, int ccf_layer,
+                                     const ContourZigzagOptions& options = {});
+
+}  // namespace fibrecell::planner

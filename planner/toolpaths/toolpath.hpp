@@ -1,0 +1,38 @@
+#pragma once
+// Toolpaths of a plan (contracts.md, toolpaths.json): per layer, the paths one head prints, in
+// print order, in the model frame [mm].
+
+#include <Eigen/Core>
+
+#include <string_view>
+#include <vector>
+
+namespace fibrecell::planner {
+
+enum class Head { pla, ccf };
+
+enum class PathRole {
+    perimeter,       // PLA outline rings
+    infill,          // PLA zigzag fill
+    fibre,           // CCF along the stress field (or the baseline's zigzag)
+    fibre_boundary,  // CCF boundary-conformal rings
+};
+
+std::string_view to_string(Head head);
+std::string_view to_string(PathRole role);
+
+struct Toolpath {
+    PathRole role = PathRole::perimeter;
+    bool closed = false;                  // the last point joins the first
+    std::vector<Eigen::Vector2d> points;  // in print order [mm]
+};
+
+struct ToolpathLayer {
+    int index = 0;  // 0-based, in print order
+    double z = 0;   // nozzle-tip height while the layer prints [mm]
+    Head head = Head::pla;
+    double thickness = 0;  // [mm]
+    std::vector<Toolpath> paths;
+};
+
+}  // namespace fibrecell::planner

@@ -1,0 +1,287 @@
+// The real MarlinLink against the mock GT2560 over a real pseudo-terminal.
+#include "drivers/marlin/marlin_link.hpp"
+#include "drivers/sim/mock_gt2560.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <thread>
+
+using namespace fibrecell::drivers;
+using namespace fibrecell::drivers::marlin;
+using namespace std::chrono_literals;
+
+namespace {
+
+std::filesystem::path temp_dir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "marlin-link-XXXXXX").string();
+    return mkdtemp(tmpl.data());
+}
+
+// Generous real-time bounds: waits end as soon as the condition holds.
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds timeout = 5000ms) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+        if (pred()) return true;
+        std::this_thread::sleep_for(1ms);
+    }
+    return pred();
+}
+
+CommandOutcome finish(std::future<CommandOutcome> f, std::chrono::seconds limit = 30s) {
+    if (f.wait_for(limit) != std::future_status::ready) return {LinkFailure::ack_timeout, "test: no result"};
+    return f.get();
+}
+
+class MarlinLinkTest : public ::testing::Test {
+  protected:
+    void start(sim::MockGt2560Options mo = {}, MarlinLinkConfig lc = {}) {
+        dir_ = temp_dir();
+        mo.link_path = (dir_ / "ttyGT2560").string();
+        if (mo.bootloader_s == 1.0) mo.bootloader_s = 0.01 * mo.time_scale;  // 10 ms real
+        mock_ = std::make_unique<sim::MockGt2560>(mo);
+        lc.serial.device = mock_->port_path();
+        config_ = lc;
+        link_.configure(lc);
+        link_.activate();
+        job_start_ = mock_->executed_count();
+    }
+    void TearDown() override {
+        if (link_.state() == DeviceState::active) link_.deactivate();
+        mock_.reset();
+        if (!dir_.empty()) std::filesystem::remove_all(dir_);
+    }
+    // The commands the mock executed since the handshake, in order.
+    std::vector<std::string> executed_job() const {
+        std::vector<std::string> out;
+        const auto log = mock_->executed();
+        for (std::size_t i = job_start_; i < log.size(); ++i) out.push_back(log[i].text);
+        return out;
+    }
+    void reconnect() {
+        link_.clear();
+        link_.configure(config_);
+        link_.activate();
+        job_start_ = mock_->executed_count();
+    }
+
+    std::filesystem::path dir_;
+    std::unique_ptr<sim::MockGt2560> mock_;
+    MarlinLink link_;
+    MarlinLinkConfig config_;
+    std::size_t job_start_ = 0;
+};
+
+std::vector<std::string> numbered_job(int n) {
+    std::vector<std::string> job;
+    for (int i = 0; i < n; ++i)
+        job.push_back(i % 2 == 0 ? "G92 E" + std::to_string(i) : "M117 L" + std::to_string(i));
+    return job;
+}
+
+}  // namespace
+
+TEST_F(MarlinLinkTest, HandshakeResetsNumberingAndReadsCapabilities) {
+    start();
+    EXPECT_EQ(link_.state(), DeviceState::active);
+    const auto log = mock_->executed();
+    ASSERT_GE(log.size(), 3u);
+    EXPECT_EQ(log[0].text, "M110 N0");
+    EXPECT_EQ(log[0].line, 0);
+    EXPECT_EQ(log[1].text, "M115");
+    EXPECT_EQ(log[2].text, "M155 S1");
+    EXPECT_TRUE(link_.capabilities().at("EMERGENCY_PARSER"));
+}
+
+TEST_F(MarlinLinkTest, TenThousandLinesWithOnePercentCorruptionRunExactlyOnceInOrder) {
+    start();
+    const auto job = numbered_job(10'000);
+    std::mt19937 rng(42);
+    std::uniform_int_distribution<std::int64_t> pick(10, 10'000);
+    for (int i = 0; i < 100; ++i) mock_->corrupt_line(pick(rng));
+    const CommandOutcome out = finish(link_.submit(job), 120s);
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_EQ(executed_job(), job);
+    EXPECT_GE(link_.stats().resend_requests, 90u);
+    EXPECT_EQ(mock_->rx_bytes_dropped(), 0u);
+}
+
+TEST_F(MarlinLinkTest, ResendWithoutOkIsDetectedAndHandled) {
+    sim::MockGt2560Options mo;
+    mo.resend_ok = false;
+    MarlinLinkConfig lc;
+    lc.protocol.resend_ok_wait = Seconds(0.05);
+    start(mo, lc);
+    const auto job = numbered_job(300);
+    for (std::int64_t k : {20, 21, 150, 151, 290}) mock_->corrupt_line(k);
+    mock_->duplicate_line(100);
+    const CommandOutcome out = finish(link_.submit(job));
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_EQ(executed_job(), job);
+}
+
+TEST_F(MarlinLinkTest, LostOkIsRecoveredWithoutRunningAnythingTwice) {
+    MarlinLinkConfig lc;
+    lc.protocol.ok_timeout = Seconds(0.1);
+    lc.protocol.probe_settle = Seconds(0.05);
+    start({}, lc);
+    const auto job = numbered_job(60);
+    mock_->swallow_ok(20);   // executed, ok lost
+    mock_->delay_ok(30, 0.3);  // ok late, after the timeout
+    mock_->drop_line(40);    // line lost on the wire
+    const CommandOutcome out = finish(link_.submit(job));
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_EQ(executed_job(), job);
+    EXPECT_GE(link_.stats().timeouts, 3u);
+}
+
+TEST_F(MarlinLinkTest, LongHeatingWaitDoesNotTimeOut) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 400;  // ~4 simulated minutes of heating in about 0.6 s
+    MarlinLinkConfig lc;
+    lc.protocol.ok_timeout = Seconds(0.1);   // far shorter than the wait
+    lc.protocol.heating_liveness = Seconds(0.5);
+    start(mo, lc);
+    const auto t0 = std::chrono::steady_clock::now();
+    const CommandOutcome out = finish(link_.submit({"M109 T0 S200", "M105"}));
+    const double real_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_GE(mock_->temperature_c(0), 199.0);
+    const auto log = mock_->executed();
+    ASSERT_GE(log.size(), 2u);
+    const double heat_s = log[log.size() - 2].t_s - log[job_start_ - 1].t_s;
+    EXPECT_EQ(log[log.size() - 2].text, "M109 T0 S200");
+    EXPECT_GT(heat_s, 120.0);  // simulated minutes
+    EXPECT_GT(real_s, 0.1);    // longer than the normal ok timeout
+    EXPECT_EQ(link_.stats().timeouts, 0u);
+}
+
+TEST_F(MarlinLinkTest, AbortBreaksAHeatingWaitPromptly) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 50;  // the full wait would take several real seconds
+    start(mo);
+    auto job = link_.submit({"M109 T1 S250", "G1 E5 F300", "M117 after"});
+    ASSERT_TRUE(eventually([&] { return mock_->temperature_c(1) > 40.0; }));
+    link_.abort();
+    const CommandOutcome out = finish(std::move(job), 2s);
+    EXPECT_EQ(out.failure, LinkFailure::aborted);
+    ASSERT_TRUE(eventually([&] {
+        const auto j = executed_job();
+        return !j.empty() && j.back() == "M108";
+    }));
+    const auto j = executed_job();
+    ASSERT_EQ(j.size(), 2u);  // the wait ended, then M108 passed the queue; nothing else ran
+    EXPECT_EQ(j[0], "M109 T1 S250");
+    EXPECT_LT(mock_->temperature_c(1), 200.0);
+    EXPECT_TRUE(finish(link_.submit({"M105"}), 5s).ok());  // accounting intact
+}
+
+TEST_F(MarlinLinkTest, CutAfterM400FiresOnlyWhenTheFeedHasFinished) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 20;
+    start(mo);
+    const CommandOutcome out = finish(link_.submit(
+        {"T1", "M83", "G1 E20 F300", "M400", "M42 P11 S255", "G4 P50", "M42 P11 S0"}));
+    ASSERT_TRUE(out.ok()) << out.detail;
+    const auto pins = mock_->pin_events();
+    ASSERT_EQ(pins.size(), 2u);
+    EXPECT_EQ(pins[0].command, "M42 P11 S255");
+    EXPECT_EQ(pins[0].planner_blocks_pending, 0);
+    EXPECT_GE(pins[0].t_s, pins[0].last_move_end_s);
+    EXPECT_GE(pins[1].t_s, pins[0].t_s + 0.05);
+}
+
+TEST_F(MarlinLinkTest, CutWithoutM400FiresWhileTheFeedIsStillRunning) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 20;
+    start(mo);
+    ASSERT_TRUE(finish(link_.submit({"T1", "M83", "G1 E20 F300", "M42 P11 S255"})).ok());
+    const auto pins = mock_->pin_events();
+    ASSERT_EQ(pins.size(), 1u);
+    EXPECT_EQ(pins[0].planner_blocks_pending, 1);  // why the controller always syncs first
+    EXPECT_LT(pins[0].t_s, pins[0].last_move_end_s);
+}
+
+TEST_F(MarlinLinkTest, ResetMidJobFailsTheJobAndNeverRenumbers) {
+    start();
+    mock_->reset_at_line(50);
+    const CommandOutcome out = finish(link_.submit(numbered_job(200)));
+    EXPECT_EQ(out.failure, LinkFailure::firmware_reset);
+    EXPECT_EQ(link_.state(), DeviceState::error);
+    EXPECT_EQ(link_.fault(), LinkFailure::firmware_reset);
+    const auto done = executed_job();
+    EXPECT_LT(done.size(), 50u);
+    reconnect();
+    EXPECT_TRUE(finish(link_.submit({"M105"})).ok());
+}
+
+TEST_F(MarlinLinkTest, CablePullIsALinkErrorAndReconnectIsClean) {
+    sim::MockGt2560Options mo;
+    start(mo);
+    auto job = link_.submit({"G4 S5", "M117 never"});
+    ASSERT_TRUE(eventually([&] { return link_.stats().lines_sent >= 4; }));  // G4 on the wire
+    mock_->unplug();
+    const CommandOutcome out = finish(std::move(job), 5s);
+    EXPECT_EQ(out.failure, LinkFailure::link_lost) << out.detail;
+    EXPECT_EQ(link_.state(), DeviceState::error);
+    mock_->replug();
+    reconnect();
+    const auto job2 = numbered_job(20);
+    ASSERT_TRUE(finish(link_.submit(job2)).ok());
+    EXPECT_EQ(executed_job(), job2);
+}
+
+TEST_F(MarlinLinkTest, GarbledResendNumberIsALinkError) {
+    start();
+    mock_->corrupt_line(30);
+    mock_->garble_next_resend();
+    const CommandOutcome out = finish(link_.submit(numbered_job(100)));
+    EXPECT_EQ(out.failure, LinkFailure::resend_out_of_window) << out.detail;
+    EXPECT_EQ(link_.state(), DeviceState::error);
+}
+
+TEST_F(MarlinLinkTest, EmergencyStopKillsTheFirmware) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 10;
+    start(mo);
+    auto job = link_.submit({"M109 T0 S200", "M117 never"});
+    ASSERT_TRUE(eventually([&] { return mock_->temperature_c(0) > 25.0; }));
+    link_.emergency_stop();
+    EXPECT_EQ(finish(std::move(job), 5s).failure, LinkFailure::emergency_stop);
+    EXPECT_TRUE(eventually([&] { return mock_->killed(); }));
+    EXPECT_EQ(link_.state(), DeviceState::error);
+}
+
+TEST_F(MarlinLinkTest, ThermalRunawayHaltsTheJob) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 10;
+    start(mo);
+    auto job = link_.submit({"M109 T0 S200", "M117 never"});
+    mock_->thermal_runaway(0);
+    EXPECT_EQ(finish(std::move(job), 5s).failure, LinkFailure::firmware_halted);
+}
+
+TEST_F(MarlinLinkTest, SilentFirmwareTimesOut) {
+    MarlinLinkConfig lc;
+    lc.protocol.ok_timeout = Seconds(0.05);
+    lc.protocol.max_probes = 2;
+    start({}, lc);
+    mock_->go_silent(true);
+    const CommandOutcome out = finish(link_.submit({"M117 hello"}), 5s);
+    EXPECT_EQ(out.failure, LinkFailure::ack_timeout) << out.detail;
+}
+
+TEST_F(MarlinLinkTest, BadLinesAreRejectedBeforeAnythingIsSent) {
+    start();
+    try {
+        link_.submit({"G1 E1", "M117 " + std::string(100, 'x')});
+        FAIL() << "expected LineError";
+    } catch (const LineError& e) {
+        EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(link_.submit({"M112"}), LineError);
+    EXPECT_TRUE(executed_job().empty());
+}
