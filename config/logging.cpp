@@ -8,11 +8,9 @@
 namespace fibrecell::config {
 
 void setup_logging(const std::string& level) {
-    std::string chosen = level;
-    if (chosen.empty()) {
-        const char* env = std::getenv("FIBRECELL_LOG");
-        chosen = env ? env : "info";
-    }
+    // The environment wins, so one run can be made verbose without touching configuration.
+    const char* env = std::getenv("FIBRECELL_LOG");
+    const std::string chosen = env && *env ? env : level.empty() ? "info" : level;
     auto logger = spdlog::stderr_color_mt("fibrecell");
     logger->set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ %v");
     logger->set_level(spdlog::level::from_str(chosen));

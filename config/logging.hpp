@@ -6,7 +6,7 @@
 
 namespace fibrecell::config {
 
-// level: trace, debug, info, warn, error, off. An empty level means $FIBRECELL_LOG or "info".
+// level: trace, debug, info, warn, error, off ("" = info). $FIBRECELL_LOG, when set, overrides it.
 // Log lines go to stderr so that stdout stays free for command output.
 void setup_logging(const std::string& level = "");
 

@@ -6,6 +6,8 @@
 #include "planner/stopwatch.hpp"
 #include "planner/toolpaths/path_order.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -37,6 +39,11 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         const AdaptiveIsocurves curves =
             adaptive_isocurves(piece.mesh, s, {.spacing_mm = options.spacing_mm});
         out.timings.extraction += clock.lap();
+        spdlog::debug(
+            "fibre.piece z={:.3f} triangles={} span={:.1f}mm curves={} extractions={} "
+            "min_distance={:.3f}mm",
+            layer.z, piece.mesh.triangles.size(), curves.geodesic_span_mm, curves.count,
+            curves.extractions, curves.min_distance_mm);
         if (curves.count == 0) continue;
         if (curves.count > 1)
             out.min_spacing_mm = std::min(out.min_spacing_mm, curves.min_distance_mm);

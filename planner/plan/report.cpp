@@ -62,6 +62,24 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
     return report;
 }
 
+void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& layers) {
+    const LayerStageStats& s = layers.stats;
+    report["stage"] = "layers";
+    report["layers"] = {{"pla", s.pla_layers}, {"ccf", s.ccf_layers}};
+    report["fibre"] = {{"length_m", s.fibre_length_mm / 1000.0},
+                       {"paths", s.fibre_paths},
+                       {"dropped_short", s.dropped_short},
+                       {"min_spacing_mm", s.fibre_min_spacing_mm},
+                       {"min_length_mm", s.fibre_min_length_mm}};
+    report["pla"] = {{"length_m", s.pla_length_mm / 1000.0}};
+    report["timings_s"]["layers"] = s.total_s;
+    report["timings_s"]["per_layer_mean"] = {{"vector_field", s.mean_vector_field},
+                                             {"scalar_field", s.mean_scalar_field},
+                                             {"extraction", s.mean_extraction},
+                                             {"connection", s.mean_connection}};
+    report["warnings"] = layers.warnings;
+}
+
 void write_json_file(const std::string& path, const nlohmann::json& value) {
     const std::string tmp = path + ".tmp";
     {

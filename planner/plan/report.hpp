@@ -3,6 +3,7 @@
 
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
+#include "planner/plan/layer_stage.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,9 @@ namespace fibrecell::planner {
 
 // The report of a plan that ran the field stage: model.*, fea.*, field.* and timings_s.*.
 nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& result);
+
+// Adds the layer stage: layers.*, fibre.*, pla.*, timings_s.layers and timings_s.per_layer_mean.
+void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& layers);
 
 // Writes `value` to `path` through a temporary file and a rename, so that a reader never sees a
 // half-written report. Throws std::runtime_error naming the path.

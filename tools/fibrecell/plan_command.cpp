@@ -3,7 +3,10 @@
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
+#include "planner/plan/layer_stage.hpp"
+#include "planner/plan/preview_svg.hpp"
 #include "planner/plan/report.hpp"
+#include "planner/plan/toolpaths_json.hpp"
 #include "planner/stopwatch.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 
@@ -12,6 +15,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace fibrecell::tools {
@@ -20,8 +24,9 @@ namespace {
 struct PlanArgs {
     std::string job;
     std::string out;
-    std::string stage = "field";
+    std::string stage = "layers";
     std::string strategy;
+    int threads = 0;
 };
 
 void print_summary(const planner::FieldStageResult& r, const std::string& out) {
@@ -48,6 +53,37 @@ void print_summary(const planner::FieldStageResult& r, const std::string& out) {
     std::printf("wrote      %s/field.vtk, %s/report.json\n", out.c_str(), out.c_str());
 }
 
+void write_layer_outputs(const std::string& out, const planner::JobSpec& job,
+                         const planner::LayerStageResult& layers) {
+    planner::write_toolpaths_json(out + "/toolpaths.json", to_string(job.planner.strategy),
+                                  layers.layers);
+    // Fibre layers of the field strategy are drawn over their sigma map.
+    std::vector<planner::TriangleScalars> maps(layers.layers.size());
+    std::vector<const planner::TriangleScalars*> backgrounds(layers.layers.size(), nullptr);
+    for (std::size_t i = 0; i < layers.layers.size(); ++i) {
+        if (layers.sigma[i].empty()) continue;
+        maps[i] = {&layers.sections[i], layers.sigma[i]};
+        backgrounds[i] = &maps[i];
+    }
+    planner::write_preview(out + "/preview", layers.layers, layers.outlines, backgrounds);
+}
+
+void print_layer_summary(const planner::LayerStageResult& layers, const std::string& out) {
+    const auto& s = layers.stats;
+    std::printf(
+        "layers     %d PLA + %d CCF in %.3f s (per CCF layer: field %.3f s, scalar %.3f s, "
+        "extraction %.3f s)\n",
+        s.pla_layers, s.ccf_layers, s.total_s, s.mean_vector_field, s.mean_scalar_field,
+        s.mean_extraction);
+    std::printf(
+        "fibre      %.2f m in %d paths (min spacing %.3f mm, shortest %.1f mm, %d dropped "
+        "as too short); PLA %.2f m\n",
+        s.fibre_length_mm / 1000.0, s.fibre_paths, s.fibre_min_spacing_mm, s.fibre_min_length_mm,
+        s.dropped_short, s.pla_length_mm / 1000.0);
+    for (const auto& w : layers.warnings) std::printf("warning    %s\n", w.c_str());
+    std::printf("wrote      %s/toolpaths.json, %s/preview/index.html\n", out.c_str(), out.c_str());
+}
+
 int run_plan(const PlanArgs& args) {
     planner::Stopwatch clock;
     try {
@@ -59,19 +95,27 @@ int run_plan(const PlanArgs& args) {
         std::fprintf(stderr, "planning %s (%s)\n", job.name.c_str(), args.job.c_str());
 
         planner::FieldStageResult result;
+        std::optional<planner::LayerStageResult> layers;
         {
             ConsoleProgress progress;
             planner::StepControl control{progress.sink(), nullptr};
             result = planner::run_field_stage(job, control);
+            if (args.stage == "layers")
+                layers = planner::run_layer_stage(job, result, args.threads, control);
             progress.update("write", 0.0);
             planner::write_field_vtk(args.out + "/field.vtk", result.model.mesh,
                                      {&*result.model.stress, &result.field.sigma_e,
                                       &result.field.v_e, &result.v_defined});
-            result.timings.total = clock.elapsed();
-            planner::write_json_file(args.out + "/report.json",
-                                     planner::field_stage_report(job, result));
+            nlohmann::json report = planner::field_stage_report(job, result);
+            if (layers) {
+                write_layer_outputs(args.out, job, *layers);
+                planner::add_layer_stage_report(report, *layers);
+            }
+            report["timings_s"]["total"] = clock.elapsed();
+            planner::write_json_file(args.out + "/report.json", report);
         }
         print_summary(result, args.out);
+        if (layers) print_layer_summary(*layers, args.out);
         return 0;
     } catch (const std::exception& e) {
         // ConfigError, InputError, FeaError and the rest all carry a complete one-line message.
@@ -87,8 +131,12 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     auto* cmd = app.add_subcommand("plan", "plan a job offline and write the plan directory");
     cmd->add_option("job", args->job, "job file (YAML)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--out", args->out, "plan directory to write")->required();
-    cmd->add_option("--stage", args->stage, "last stage to run (this version: field)")
-        ->check(CLI::IsMember({"field"}));
+    cmd->add_option("--stage", args->stage,
+                    "last stage to run: field (3D vector field) or layers (toolpaths; default)")
+        ->check(CLI::IsMember({"field", "layers"}));
+    cmd->add_option("--threads", args->threads,
+                    "worker threads for the layers (default: all cores)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--strategy", args->strategy, "override the job's fibre strategy")
         ->check(CLI::IsMember({"field", "contour-zigzag"}));
     cmd->callback([args, &exit_code] { exit_code = run_plan(*args); });

@@ -1,0 +1,135 @@
+#include "planner/plan/layer_stage.hpp"
+
+#include "planner/fibre/fibre_layer.hpp"
+#include "planner/layers/layer_schedule.hpp"
+#include "planner/layers/outline.hpp"
+#include "planner/layers/placement.hpp"
+#include "planner/layers/slice.hpp"
+#include "planner/stopwatch.hpp"
+#include "planner/toolpaths/contour_zigzag.hpp"
+#include "planner/toolpaths/path_order.hpp"
+#include "planner/toolpaths/pla_paths.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+namespace fibrecell::planner {
+namespace {
+
+struct LayerWork {
+    ToolpathLayer layer;
+    std::vector<double> sigma;
+    std::vector<std::string> warnings;
+    int dropped_short = 0;
+    double min_spacing = 0;
+    FibreLayerTimings timings;
+};
+
+}  // namespace
+
+LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field, int threads,
+                                 const StepControl& control) {
+    Stopwatch clock;
+    LayerStageResult out;
+    const Placement placement = placement_for(field.model.mesh, job.placement);
+    const TetMesh placed = place_mesh(field.model.mesh, placement);
+    const std::vector<Eigen::Vector3d> v_placed = rotate_vectors(field.field.v_e, placement);
+    const std::vector<ScheduledLayer> schedule = layer_schedule(part_height(placed), job.layers);
+
+    std::vector<double> heights;
+    for (const auto& s : schedule) heights.push_back(s.slice_z);
+    out.sections = slice_layers(placed, heights, {}, control);
+    out.outlines.resize(schedule.size());
+
+    const PlaPathOptions pla = pla_path_options(job.process);
+    const ContourZigzagOptions baseline = contour_zigzag_options(job.planner);
+    FibreLayerOptions fibre;
+    fibre.field = {.smoothing_iterations = job.planner.smoothing_iterations, .p = job.planner.p};
+    fibre.spacing_mm = job.planner.fibre_spacing_mm;
+    fibre.cutter_distance_mm = job.planner.cutter_distance_mm;
+
+    std::vector<LayerWork> work(schedule.size());
+    std::atomic<std::size_t> next{0}, finished{0};
+    std::mutex failure_mutex;
+    std::exception_ptr failure;
+    auto worker = [&] {
+        try {
+            for (std::size_t i = next++; i < schedule.size(); i = next++) {
+                control.check_cancel();
+                const ScheduledLayer& s = schedule[i];
+                LayerWork& w = work[i];
+                w.layer = {s.index, s.z, s.head, s.thickness, {}};
+                out.outlines[i] = layer_outline(out.sections[i]);
+                if (s.head == Head::pla) {
+                    w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number, pla);
+                } else if (job.planner.strategy == Strategy::contour_zigzag) {
+                    auto r = contour_zigzag_paths(out.outlines[i], s.pla_number, baseline);
+                    w.layer.paths = std::move(r.paths);
+                    w.dropped_short = r.dropped_short;
+                } else {
+                    FibreLayer r = plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
+                                                    field.v_defined, fibre);
+                    w.layer.paths = std::move(r.paths);
+                    w.dropped_short = static_cast<int>(r.dropped_short);
+                    w.min_spacing = r.min_spacing_mm;
+                    w.sigma = std::move(r.field.sigma_f);
+                    w.warnings = std::move(r.warnings);
+                    w.timings = r.timings;
+                }
+                control.report("layers", static_cast<double>(++finished) / schedule.size());
+            }
+        } catch (...) {
+            std::lock_guard lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            next = schedule.size();  // the others stop at their next layer
+        }
+    };
+    const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> pool;
+    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+
+    LayerStageStats& st = out.stats;
+    double min_length = 0;
+    for (LayerWork& w : work) {
+        const bool ccf = w.layer.head == Head::ccf;
+        (ccf ? st.ccf_layers : st.pla_layers) += 1;
+        for (const Toolpath& p : w.layer.paths) {
+            const double len = path_length(p);
+            if (!ccf) {
+                st.pla_length_mm += len;
+                continue;
+            }
+            st.fibre_length_mm += len;
+            ++st.fibre_paths;
+            min_length = min_length == 0 ? len : std::min(min_length, len);
+        }
+        st.dropped_short += w.dropped_short;
+        if (w.min_spacing > 0)
+            st.fibre_min_spacing_mm = st.fibre_min_spacing_mm == 0
+                                          ? w.min_spacing
+                                          : std::min(st.fibre_min_spacing_mm, w.min_spacing);
+        st.mean_vector_field += w.timings.vector_field;
+        st.mean_scalar_field += w.timings.scalar_field;
+        st.mean_extraction += w.timings.extraction;
+        st.mean_connection += w.timings.connection;
+        out.layers.push_back(std::move(w.layer));
+        out.sigma.push_back(std::move(w.sigma));
+        out.warnings.insert(out.warnings.end(), w.warnings.begin(), w.warnings.end());
+    }
+    st.fibre_min_length_mm = min_length;
+    if (st.ccf_layers > 0) {
+        st.mean_vector_field /= st.ccf_layers;
+        st.mean_scalar_field /= st.ccf_layers;
+        st.mean_extraction /= st.ccf_layers;
+        st.mean_connection /= st.ccf_layers;
+    }
+    st.total_s = clock.elapsed();
+    return out;
+}
+
+}  // namespace fibrecell::planner

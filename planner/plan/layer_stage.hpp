@@ -1,0 +1,42 @@
+#pragma once
+// The second planning stage: place the part, cut it into the layer schedule and plan every
+// layer's paths (PLA matrix rings + zigzag; CCF fibres by the job's strategy).
+
+#include "planner/fibre/layer_field.hpp"
+#include "planner/job/job_spec.hpp"
+#include "planner/layers/layer_mesh.hpp"
+#include "planner/plan/field_stage.hpp"
+#include "planner/progress.hpp"
+#include "planner/toolpaths/toolpath.hpp"
+
+#include <string>
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct LayerStageStats {
+    int pla_layers = 0, ccf_layers = 0;
+    double fibre_length_mm = 0, pla_length_mm = 0;
+    int fibre_paths = 0, dropped_short = 0;
+    double fibre_min_spacing_mm = 0;  // smallest spacing of field-strategy layers (0: none)
+    double fibre_min_length_mm = 0;   // shortest fibre path kept (0: none)
+    // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).
+    double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
+    double total_s = 0;  // all per-layer work, wall clock
+};
+
+struct LayerStageResult {
+    std::vector<ToolpathLayer> layers;   // print order, bed frame [mm]
+    std::vector<LayerOutline> outlines;  // one per layer
+    std::vector<LayerMesh> sections;     // one per layer (CCF ones carry the field)
+    std::vector<std::vector<double>>
+        sigma;  // per layer: sigma_f per triangle (CCF field), or empty
+    std::vector<std::string> warnings;
+    LayerStageStats stats;
+};
+
+// threads: worker threads for the independent layers (0 = hardware concurrency).
+LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field, int threads = 0,
+                                 const StepControl& control = {});
+
+}  // namespace fibrecell::planner

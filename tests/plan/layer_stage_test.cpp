@@ -1,0 +1,105 @@
+// The layer stage end to end on a bar in uniaxial tension: the layer stack, straight fibres along
+// the load, PLA layers, and the plan directory written by `fibrecell plan`.
+
+#include "planner/plan/layer_stage.hpp"
+#include "planner/io/vtk_writer.hpp"
+#include "planner/job/job_spec.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+#include "planner/plan/field_stage.hpp"
+#include "planner/plan/toolpaths_json.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+using namespace fibrecell::planner;
+namespace fs = std::filesystem;
+
+namespace {
+
+class LayerStageTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / "fibrecell-layer-stage";
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        // 100 x 20 x 1.6 mm bar pulled along x: two PLA layers, a CCF layer on each.
+        const TetMesh mesh = structured_tet_mesh({.size = {100, 20, 1.6}, .cells = {50, 10, 2}});
+        std::vector<StressTensor> stress(mesh.tet_count(), StressTensor::Zero());
+        for (auto& s : stress) s(0, 0) = 30.0;
+        write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
+        std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n"
+                                                "placement:\n  position_mm: [50, 10]\n";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(LayerStageTest, BarGetsAlternatingLayersAndStraightFibresAlongTheLoad) {
+    const JobSpec job = load_job_file((dir_ / "bar.job.yaml").string());
+    const FieldStageResult field = run_field_stage(job);
+    const LayerStageResult r = run_layer_stage(job, field, 2);
+    ASSERT_EQ(r.layers.size(), 4u);
+    const Head expected[] = {Head::pla, Head::ccf, Head::pla, Head::ccf};
+    const double z[] = {0.8, 0.85, 1.65, 1.7};
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(r.layers[i].head, expected[i]);
+        EXPECT_NEAR(r.layers[i].z, z[i], 1e-9);
+        EXPECT_FALSE(r.layers[i].paths.empty()) << "layer " << i;
+    }
+    for (const ToolpathLayer& layer : r.layers) {
+        if (layer.head != Head::ccf) continue;
+        for (const Toolpath& p : layer.paths) {
+            EXPECT_EQ(p.role, PathRole::fibre);
+            EXPECT_NEAR((p.points.back() - p.points.front()).norm(), 100.0, 1e-6);
+            for (const auto& q : p.points) {
+                EXPECT_NEAR(q.y(), p.points.front().y(), 1e-6);  // straight along x
+                EXPECT_TRUE(q.x() >= -1e-9 && q.x() <= 100 + 1e-9 && q.y() >= 0 && q.y() <= 20);
+            }
+        }
+    }
+    EXPECT_GT(r.stats.fibre_min_spacing_mm, 1.0);
+    EXPECT_LE(r.stats.fibre_min_spacing_mm, 1.25);
+    EXPECT_EQ(r.stats.pla_layers, 2);
+    EXPECT_EQ(r.stats.ccf_layers, 2);
+    EXPECT_NEAR(r.stats.fibre_min_length_mm, 100.0, 1e-6);
+}
+
+TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
+    const fs::path out = dir_ / "plan";
+    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+                            (dir_ / "bar.job.yaml").string() + " --out " + out.string() +
+                            " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const ToolpathsFile toolpaths = read_toolpaths_json((out / "toolpaths.json").string());
+    EXPECT_EQ(toolpaths.strategy, "field");
+    EXPECT_EQ(toolpaths.layers.size(), 4u);
+    EXPECT_TRUE(fs::exists(out / "preview" / "index.html"));
+    EXPECT_TRUE(fs::exists(out / "preview" / "layer_0003.svg"));
+    std::ifstream in(out / "report.json");
+    const auto report = nlohmann::json::parse(in);
+    EXPECT_EQ(report["layers"]["pla"], 2);
+    EXPECT_EQ(report["layers"]["ccf"], 2);
+    EXPECT_GT(report["fibre"]["length_m"].get<double>(), 1.0);
+    for (const char* key : {"vector_field", "scalar_field", "extraction", "connection"})
+        EXPECT_TRUE(report["timings_s"]["per_layer_mean"][key].is_number()) << key;
+}
+
+TEST_F(LayerStageTest, BaselineStrategyProducesRingsAndZigzag) {
+    JobSpec job = load_job_file((dir_ / "bar.job.yaml").string());
+    job.planner.strategy = Strategy::contour_zigzag;
+    const LayerStageResult r = run_layer_stage(job, run_field_stage(job), 1);
+    bool rings = false, fill = false;
+    for (const auto& layer : r.layers)
+        for (const auto& p : layer.paths) {
+            rings |= p.role == PathRole::fibre_boundary;
+            fill |= p.role == PathRole::fibre;
+        }
+    EXPECT_TRUE(rings && fill);
+}
