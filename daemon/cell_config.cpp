@@ -12,6 +12,7 @@ CellConfig load_cell_config(const std::string& path) {
         root.choice("log_level", c.log_level, {"trace", "debug", "info", "warn", "error", "off"});
     c.state_dir = root.get_or<std::string>("state_dir", c.state_dir);
     c.simulated = root.get_or<bool>("simulated", c.simulated);
+    c.extruder = drivers::load_extruder_config(root.section("extruder"));
     root.finish();
     return c;
 }

@@ -2,6 +2,8 @@
 // The cell configuration (cell YAML): what the service needs before it can run. Each module
 // reads its own section; unknown keys and out-of-range values are rejected with the key path.
 
+#include "drivers/extruder/extruder_config.hpp"
+
 #include <string>
 
 namespace fibrecell::daemon {
@@ -11,6 +13,7 @@ struct CellConfig {
     std::string log_level = "info";                 // trace|debug|info|warn|error|off
     std::string state_dir = "/var/lib/fibrecelld";  // job folders live here
     bool simulated = true;                          // simulated controller and mock board
+    drivers::ExtruderConfig extruder;               // GT2560 link, tools, cutter (marlin-link.md)
 };
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key.

@@ -55,8 +55,7 @@ case "${1:-demo}" in
         install_missing
         configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
         out="$root/out/loop"
-        "$release_dir/tools/fibrecell" plan "$root/examples/loop/loop.job.yaml" --out "$out" \
-            --stage field
+        "$release_dir/tools/fibrecell" plan "$root/examples/loop/loop.job.yaml" --out "$out"
         ;;
     test)
         install_missing
