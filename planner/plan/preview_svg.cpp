@@ -1,5 +1,7 @@
 #include "planner/plan/preview_svg.hpp"
 
+#include "planner/plan/text_file.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -122,12 +124,6 @@ constexpr const char* svg_style =
     ".perimeter{stroke:#1f5fbf}.infill{stroke:#f28e2b}"
     ".fibre{stroke:#d62728}.fibre-boundary{stroke:#111111}"
     "text{font:2px sans-serif;fill:#333}";
-
-void write_file(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
-}
 
 std::string fixed(double value, int decimals) {
     char buffer[64];
@@ -269,10 +265,10 @@ void write_preview(const std::string& dir, const std::vector<ToolpathLayer>& lay
     }
     const std::filesystem::path folder(dir);
     for (std::size_t i = 0; i < layers.size(); ++i)
-        write_file(folder / preview_svg_name(layers[i].index),
-                   layer_svg(layers[i], outlines.empty() ? nullptr : &outlines[i],
-                             backgrounds.empty() ? nullptr : backgrounds[i], options));
-    write_file(folder / "index.html", preview_index_html(layers));
+        write_text_file((folder / preview_svg_name(layers[i].index)).string(),
+                        layer_svg(layers[i], outlines.empty() ? nullptr : &outlines[i],
+                                  backgrounds.empty() ? nullptr : backgrounds[i], options));
+    write_text_file((folder / "index.html").string(), preview_index_html(layers));
 }
 
 }  // namespace fibrecell::planner

@@ -1,5 +1,7 @@
 #include "planner/plan/report.hpp"
 
+#include "planner/plan/text_file.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -81,14 +83,7 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& value) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        out << value.dump(2) << "\n";
-        if (!out.flush()) throw std::runtime_error(tmp + ": cannot write");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error(path + ": cannot replace the file");
+    write_text_file(path, value.dump(2) + "\n");
 }
 
 }  // namespace fibrecell::planner

@@ -1,5 +1,7 @@
 #include "planner/plan/toolpaths_json.hpp"
 
+#include "planner/plan/text_file.hpp"
+
 #include "planner/input_error.hpp"
 #include "planner/io/file_text.hpp"
 
@@ -152,16 +154,7 @@ std::string toolpaths_json_text(std::string_view strategy,
 void write_toolpaths_json(const std::string& path, std::string_view strategy,
                           const std::vector<ToolpathLayer>& layers) {
     const std::string text = toolpaths_json_text(strategy, layers);
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out.flush()) throw std::runtime_error(tmp + ": cannot write");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": cannot replace the file");
-    }
+    write_text_file(path, text);
 }
 
 ToolpathsFile read_toolpaths_json(const std::string& path) {

@@ -23,7 +23,10 @@ namespace {
 class LayerStageTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / "fibrecell-layer-stage";
+        // ctest runs each test in its own process, in parallel: one folder per test.
+        dir_ = fs::temp_directory_path() /
+               ("fibrecell-layer-stage-" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         // 100 x 20 x 1.6 mm bar pulled along x: two PLA layers, a CCF layer on each.
