@@ -1,0 +1,117 @@
+// The fibre guarantees of the plan on the bundled examples, on every CCF layer: no fibre path
+// shorter than the cutter distance, no two points of different paths closer than W, every point
+// inside the layer's region.
+
+#include "planner/job/job_spec.hpp"
+#include "planner/layers/outline.hpp"
+#include "planner/plan/field_stage.hpp"
+#include "planner/plan/layer_stage.hpp"
+#include "planner/toolpaths/path_order.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <unordered_map>
+
+using namespace fibrecell::planner;
+
+namespace {
+
+// Points every `step` mm along a path (its vertices included).
+std::vector<Eigen::Vector2d> sample(const Toolpath& p, double step) {
+    std::vector<Eigen::Vector2d> out;
+    const std::size_t n = p.points.size();
+    for (std::size_t i = 0; i + 1 < n + (p.closed ? 1 : 0); ++i) {
+        const Eigen::Vector2d a = p.points[i], b = p.points[(i + 1) % n];
+        const int k = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+        for (int j = 0; j < k; ++j) out.push_back(a + (b - a) * (static_cast<double>(j) / k));
+    }
+    out.push_back(p.closed ? p.points.front() : p.points.back());
+    return out;
+}
+
+// Smallest distance between sample points of different paths, through a hash grid.
+double min_distance_between_paths(const std::vector<Toolpath>& paths, double cell) {
+    struct Sample {
+        Eigen::Vector2d p;
+        int path;
+    };
+    std::unordered_map<long long, std::vector<Sample>> grid;
+    auto key = [&](long x, long y) {
+        return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL);
+    };
+    std::vector<Sample> all;
+    for (std::size_t i = 0; i < paths.size(); ++i)
+        for (const auto& q : sample(paths[i], cell / 4)) all.push_back({q, static_cast<int>(i)});
+    for (const auto& s : all)
+        grid[key(std::lround(std::floor(s.p.x() / cell)), std::lround(std::floor(s.p.y() / cell)))]
+            .push_back(s);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& s : all) {
+        const long cx = std::lround(std::floor(s.p.x() / cell)),
+                   cy = std::lround(std::floor(s.p.y() / cell));
+        for (long x = cx - 1; x <= cx + 1; ++x)
+            for (long y = cy - 1; y <= cy + 1; ++y)
+                if (auto it = grid.find(key(x, y)); it != grid.end())
+                    for (const auto& t : it->second)
+                        if (t.path != s.path) best = std::min(best, (t.p - s.p).norm());
+    }
+    return best;
+}
+
+// Winding number of the outline's loops around p: 1 inside the region, 0 outside.
+int winding(const LayerOutline& outline, const Eigen::Vector2d& p) {
+    int w = 0;
+    for (const auto& loop : outline.loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            const Eigen::Vector2d a = loop[i], b = loop[(i + 1) % loop.size()];
+            const double cross =
+                (b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y());
+            if (a.y() <= p.y() && b.y() > p.y() && cross > 0) ++w;
+            if (a.y() > p.y() && b.y() <= p.y() && cross < 0) --w;
+        }
+    return w;
+}
+
+double distance_to_outline(const LayerOutline& outline, const Eigen::Vector2d& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& loop : outline.loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            const Eigen::Vector2d a = loop[i], ab = loop[(i + 1) % loop.size()] - a;
+            const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+            best = std::min(best, (a + t * ab - p).norm());
+        }
+    return best;
+}
+
+void check_guarantees(const std::string& job_file) {
+    const JobSpec job = load_job_file(job_file);
+    const LayerStageResult r = run_layer_stage(job, run_field_stage(job), 2);
+    const double w = job.planner.fibre_spacing_mm;
+    int fibre_layers = 0;
+    for (std::size_t i = 0; i < r.layers.size(); ++i) {
+        const ToolpathLayer& layer = r.layers[i];
+        if (layer.head != Head::ccf) continue;
+        if (!layer.paths.empty()) ++fibre_layers;
+        for (const Toolpath& p : layer.paths) {
+            EXPECT_GE(path_length(p), job.planner.cutter_distance_mm) << "layer " << i;
+            for (const auto& q : p.points)
+                EXPECT_TRUE(winding(r.outlines[i], q) == 1 ||
+                            distance_to_outline(r.outlines[i], q) < 1e-6)
+                    << "layer " << i << " point " << q.transpose() << " outside the region";
+        }
+        // Sampling at W/4 can hide at most W/8 of a closer approach.
+        EXPECT_GT(min_distance_between_paths(layer.paths, w), w - w / 8) << "layer " << i;
+    }
+    EXPECT_GT(fibre_layers, 0);
+}
+
+}  // namespace
+
+TEST(ExampleGuarantees, TensileBar) {
+    check_guarantees(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+}
+
+TEST(ExampleGuarantees, Loop) {
+    check_guarantees(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+}
