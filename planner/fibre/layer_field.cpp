@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace fibrecell::planner {
@@ -92,11 +93,20 @@ LayerField layer_field(const LayerMesh& layer, const std::vector<Eigen::Vector3d
         std::swap(known, known_next);
     }
 
+    double cap = std::numeric_limits<double>::infinity();
+    if (options.sigma_cap_percentile < 100.0) {
+        std::vector<double> sorted = out.sigma_f;
+        const auto k = static_cast<std::size_t>(options.sigma_cap_percentile / 100.0 *
+                                                static_cast<double>(nf - 1));
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k),
+                         sorted.end());
+        cap = sorted[k];
+    }
     out.u_f.assign(nf, Eigen::Vector2d::Zero());
     for (std::size_t f = 0; f < nf; ++f) {
         const double len = out.v_f[f].norm();
         if (!known[f] || len < 1e-12) continue;  // opposite directions cancelled: no information
-        out.u_f[f] = std::pow(std::max(out.sigma_f[f], 0.0), options.p) * out.v_f[f] / len;
+        out.u_f[f] = std::pow(std::clamp(out.sigma_f[f], 0.0, cap), options.p) * out.v_f[f] / len;
     }
     return out;
 }

@@ -19,6 +19,10 @@ struct LayerFieldOptions {
     // A projected direction shorter than this (a tet whose v_e is nearly vertical) carries no
     // in-plane information and is treated as undefined.
     double min_projected_length = 0.2;
+    // Caps sigma_f at this percentile of the layer's values before Eq. 5 (100 = no cap). A stress
+    // singularity (the edge of a clamp, a re-entrant corner) otherwise sets the minimal spacing
+    // for the whole layer and thins the fibres everywhere else.
+    double sigma_cap_percentile = 100.0;
 };
 
 struct LayerField {

@@ -120,6 +120,7 @@ PlannerSpec read_planner(Section s) {
                              : rule == "majority" ? IncompatibilityRule::majority
                                                   : IncompatibilityRule::any_neighbour;
     p.p = s.number("p", p.p, 0, 10);
+    p.sigma_cap_percentile = s.number("sigma_cap_percentile", p.sigma_cap_percentile, 0, 100, true);
     p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
     p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);
     p.cutter_distance_mm = s.number("cutter_distance_mm", p.cutter_distance_mm, 0, 10000);

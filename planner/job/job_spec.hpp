@@ -59,7 +59,10 @@ struct PlannerSpec {
     double mu = 3.0;   // rule-2 threshold |sigma_1 / sigma_2| < mu
     double eta = 0.5;  // incompatibility threshold (Eq. 2)
     IncompatibilityRule incompatibility_rule = IncompatibilityRule::all_neighbours;
-    double p = 1.0;                  // density exponent of u_f = sigma^p v/|v| (Eq. 5)
+    double p = 1.0;  // density exponent of u_f = sigma^p v/|v| (Eq. 5)
+    // sigma_f is capped at this percentile of its layer before Eq. 5 (100: the paper, no cap), so
+    // that one stress singularity does not set the spacing of the whole layer.
+    double sigma_cap_percentile = 99.0;
     double fibre_spacing_mm = 1.0;   // W: minimal spacing between fibre paths
     int smoothing_iterations = 50;   // local Laplacian smoothing per layer
     double cutter_distance_mm = 42;  // cutter to nozzle tip: shorter paths cannot be laid

@@ -25,6 +25,7 @@ struct LayerWork {
     int dropped_short = 0;
     double min_spacing = 0;
     FibreLayerTimings timings;
+    FibreQualitySums quality;
 };
 
 }  // namespace
@@ -39,14 +40,22 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     const std::vector<ScheduledLayer> schedule = layer_schedule(part_height(placed), job.layers);
 
     std::vector<double> heights;
-    for (const auto& s : schedule) heights.push_back(s.slice_z);
+    std::vector<int>
+        ccf_ordinal;  // 0-based count among CCF layers: the baseline turns per CCF layer
+    int ccf_count = 0;
+    for (const auto& s : schedule) {
+        heights.push_back(s.slice_z);
+        ccf_ordinal.push_back(s.head == Head::ccf ? ccf_count++ : -1);
+    }
     out.sections = slice_layers(placed, heights, {}, control);
     out.outlines.resize(schedule.size());
 
     const PlaPathOptions pla = pla_path_options(job.process);
     const ContourZigzagOptions baseline = contour_zigzag_options(job.planner);
     FibreLayerOptions fibre;
-    fibre.field = {.smoothing_iterations = job.planner.smoothing_iterations, .p = job.planner.p};
+    fibre.field = {.smoothing_iterations = job.planner.smoothing_iterations,
+                   .p = job.planner.p,
+                   .sigma_cap_percentile = job.planner.sigma_cap_percentile};
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
     fibre.cutter_distance_mm = job.planner.cutter_distance_mm;
 
@@ -65,7 +74,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 if (s.head == Head::pla) {
                     w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number, pla);
                 } else if (job.planner.strategy == Strategy::contour_zigzag) {
-                    auto r = contour_zigzag_paths(out.outlines[i], s.pla_number, baseline);
+                    auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
                     w.layer.paths = std::move(r.paths);
                     w.dropped_short = r.dropped_short;
                 } else {
@@ -78,6 +87,10 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                     w.warnings = std::move(r.warnings);
                     w.timings = r.timings;
                 }
+                if (s.head == Head::ccf)
+                    w.quality =
+                        fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
+                                      field.v_defined, {.p = job.planner.p});
                 control.report("layers", static_cast<double>(++finished) / schedule.size());
             }
         } catch (...) {
@@ -117,6 +130,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         st.mean_scalar_field += w.timings.scalar_field;
         st.mean_extraction += w.timings.extraction;
         st.mean_connection += w.timings.connection;
+        st.quality += w.quality;
         out.layers.push_back(std::move(w.layer));
         out.sigma.push_back(std::move(w.sigma));
         out.warnings.insert(out.warnings.end(), w.warnings.begin(), w.warnings.end());

@@ -5,6 +5,7 @@
 #include "planner/fibre/layer_field.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"
+#include "planner/plan/fibre_quality.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/progress.hpp"
 #include "planner/toolpaths/toolpath.hpp"
@@ -22,7 +23,8 @@ struct LayerStageStats {
     double fibre_min_length_mm = 0;   // shortest fibre path kept (0: none)
     // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
-    double total_s = 0;  // all per-layer work, wall clock
+    double total_s = 0;        // all per-layer work, wall clock
+    FibreQualitySums quality;  // over all CCF layers
 };
 
 struct LayerStageResult {

@@ -79,6 +79,8 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
                                              {"scalar_field", s.mean_scalar_field},
                                              {"extraction", s.mean_extraction},
                                              {"connection", s.mean_connection}};
+    report["quality"] = {{"alignment_weighted_cos", s.quality.alignment()},
+                         {"density_sigma_p_correlation", s.quality.density_correlation()}};
     report["warnings"] = layers.warnings;
 }
 

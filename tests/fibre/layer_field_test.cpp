@@ -93,3 +93,16 @@ TEST(LayerField, TriangleNeighboursShareAnEdge) {
     // 8 triangles in a 2x2 grid have 16 interior edges... counted from both sides.
     EXPECT_EQ(pairs, 2u * 8);
 }
+
+TEST(LayerField, SigmaCapLimitsTheSingularityNotTheDirection) {
+    const LayerMesh m = grid_layer(10, 10, 10, 10);
+    TetValues t = uniform(m.triangles.size(), Eigen::Vector3d::UnitX(), 2.0);
+    t.sigma_e[57] = 1000.0;  // a singularity in one face
+    const LayerField capped =
+        layer_field(m, t.v_e, t.sigma_e, t.defined,
+                    {.smoothing_iterations = 0, .p = 1.0, .sigma_cap_percentile = 99.0});
+    for (const auto& u : capped.u_f) EXPECT_NEAR(u.x(), 2.0, 1e-12);  // the 99th percentile is 2
+    const LayerField paper =
+        layer_field(m, t.v_e, t.sigma_e, t.defined, {.smoothing_iterations = 0, .p = 1.0});
+    EXPECT_NEAR(paper.u_f[57].x(), 1000.0, 1e-12);
+}

@@ -72,6 +72,7 @@ TEST_F(LayerStageTest, BarGetsAlternatingLayersAndStraightFibresAlongTheLoad) {
     EXPECT_EQ(r.stats.pla_layers, 2);
     EXPECT_EQ(r.stats.ccf_layers, 2);
     EXPECT_NEAR(r.stats.fibre_min_length_mm, 100.0, 1e-6);
+    EXPECT_NEAR(r.stats.quality.alignment(), 1.0, 1e-9);  // straight along the load
 }
 
 TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
@@ -105,4 +106,8 @@ TEST_F(LayerStageTest, BaselineStrategyProducesRingsAndZigzag) {
             fill |= p.role == PathRole::fibre;
         }
     EXPECT_TRUE(rings && fill);
+    // Zigzag at 0 degrees, then 45 (|cos| 1 and 0.71), rings mostly along the load: the same
+    // metric tells the strategies apart.
+    EXPECT_LT(r.stats.quality.alignment(), 0.95);
+    EXPECT_GT(r.stats.quality.alignment(), 0.75);
 }

@@ -80,6 +80,10 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         "as too short); PLA %.2f m\n",
         s.fibre_length_mm / 1000.0, s.fibre_paths, s.fibre_min_spacing_mm, s.fibre_min_length_mm,
         s.dropped_short, s.pla_length_mm / 1000.0);
+    std::printf(
+        "quality    fibres along the tension: stress-weighted |cos| %.3f; density vs "
+        "sigma^p correlation %.3f\n",
+        s.quality.alignment(), s.quality.density_correlation());
     for (const auto& w : layers.warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("wrote      %s/toolpaths.json, %s/preview/index.html\n", out.c_str(), out.c_str());
 }

@@ -1,0 +1,135 @@
+#include "planner/plan/fibre_quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace fibrecell::planner {
+namespace {
+
+// Uniform grid of triangles for point location.
+class TriangleLocator {
+  public:
+    TriangleLocator(const LayerMesh& layer, double cell) : layer_(layer), cell_(cell) {
+        for (std::size_t f = 0; f < layer.triangles.size(); ++f) {
+            Eigen::Vector2d lo = layer.vertices[layer.triangles[f][0]], hi = lo;
+            for (int v : layer.triangles[f]) {
+                lo = lo.cwiseMin(layer.vertices[v]);
+                hi = hi.cwiseMax(layer.vertices[v]);
+            }
+            for (long x = index(lo.x()); x <= index(hi.x()); ++x)
+                for (long y = index(lo.y()); y <= index(hi.y()); ++y)
+                    cells_[key(x, y)].push_back(static_cast<int>(f));
+        }
+    }
+
+    // The triangle containing p, or -1.
+    int locate(const Eigen::Vector2d& p) const {
+        const auto it = cells_.find(key(index(p.x()), index(p.y())));
+        if (it == cells_.end()) return -1;
+        for (int f : it->second)
+            if (contains(f, p)) return f;
+        return -1;
+    }
+
+  private:
+    bool contains(int f, const Eigen::Vector2d& p) const {
+        const auto& t = layer_.triangles[f];
+        auto side = [&](int a, int b) {
+            const Eigen::Vector2d e = layer_.vertices[b] - layer_.vertices[a];
+            const Eigen::Vector2d d = p - layer_.vertices[a];
+            return e.x() * d.y() - e.y() * d.x();
+        };
+        const double tol = -1e-9;
+        return side(t[0], t[1]) >= tol && side(t[1], t[2]) >= tol && side(t[2], t[0]) >= tol;
+    }
+    long index(double v) const { return std::lround(std::floor(v / cell_)); }
+    static long long key(long x, long y) {
+        return (static_cast<long long>(x) << 32) ^ (static_cast<long long>(y) & 0xffffffffLL);
+    }
+
+    const LayerMesh& layer_;
+    double cell_;
+    std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+}  // namespace
+
+FibreQualitySums& FibreQualitySums::operator+=(const FibreQualitySums& o) {
+    weighted_cos += o.weighted_cos;
+    weight += o.weight;
+    density.insert(density.end(), o.density.begin(), o.density.end());
+    stress_p.insert(stress_p.end(), o.stress_p.begin(), o.stress_p.end());
+    return *this;
+}
+
+double FibreQualitySums::density_correlation() const {
+    const std::size_t n = density.size();
+    if (n < 3) return 0.0;
+    double mx = 0, my = 0;
+    for (std::size_t i = 0; i < n; ++i) mx += density[i], my += stress_p[i];
+    mx /= n, my /= n;
+    double sxy = 0, sxx = 0, syy = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        sxy += (density[i] - mx) * (stress_p[i] - my);
+        sxx += (density[i] - mx) * (density[i] - mx);
+        syy += (stress_p[i] - my) * (stress_p[i] - my);
+    }
+    return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : 0.0;
+}
+
+FibreQualitySums fibre_quality(const LayerMesh& layer, const std::vector<Toolpath>& paths,
+                               const std::vector<Eigen::Vector3d>& v_e,
+                               const std::vector<double>& sigma_e,
+                               const std::vector<std::uint8_t>& v_defined,
+                               const FibreQualityOptions& options) {
+    FibreQualitySums sums;
+    if (layer.triangles.empty()) return sums;
+    const TriangleLocator locate(layer, 2.0);
+    const double c = options.cell_mm;
+    auto cell_of = [&](const Eigen::Vector2d& p) {
+        return (static_cast<long long>(std::lround(std::floor(p.x() / c))) << 32) ^
+               (std::lround(std::floor(p.y() / c)) & 0xffffffffLL);
+    };
+    struct Cell {
+        double area = 0, stress_area = 0, fibre = 0;
+    };
+    std::unordered_map<long long, Cell> cells;
+    for (std::size_t f = 0; f < layer.triangles.size(); ++f) {
+        const auto& t = layer.triangles[f];
+        const Eigen::Vector2d a = layer.vertices[t[0]], b = layer.vertices[t[1]],
+                              d = layer.vertices[t[2]];
+        const double area = 0.5 * std::abs((b - a).x() * (d - a).y() - (b - a).y() * (d - a).x());
+        Cell& cell = cells[cell_of((a + b + d) / 3.0)];
+        cell.area += area;
+        cell.stress_area +=
+            area * std::pow(std::max(sigma_e[layer.triangle_tet[f]], 0.0), options.p);
+    }
+    for (const Toolpath& path : paths) {
+        const std::size_t n = path.points.size();
+        for (std::size_t i = 0; i + 1 < n + (path.closed ? 1 : 0); ++i) {
+            const Eigen::Vector2d a = path.points[i], b = path.points[(i + 1) % n];
+            const double len = (b - a).norm();
+            if (len <= 0) continue;
+            const Eigen::Vector2d mid = 0.5 * (a + b);
+            if (auto it = cells.find(cell_of(mid)); it != cells.end()) it->second.fibre += len;
+            const int f = locate.locate(mid);
+            if (f < 0) continue;
+            const int tet = layer.triangle_tet[f];
+            const Eigen::Vector2d v = v_e[tet].head<2>();
+            if (!v_defined[tet] || v.norm() < 1e-9) continue;
+            const double w = std::max(sigma_e[tet], 0.0) * len;
+            sums.weighted_cos += w * std::abs((b - a).dot(v) / (len * v.norm()));
+            sums.weight += w;
+        }
+    }
+    // Only cells mostly inside the part: partial cells at the outline would skew the density.
+    for (const auto& [_, cell] : cells) {
+        if (cell.area < 0.5 * c * c) continue;
+        sums.density.push_back(cell.fibre / cell.area);
+        sums.stress_p.push_back(cell.stress_area / cell.area);
+    }
+    return sums;
+}
+
+}  // namespace fibrecell::planner
