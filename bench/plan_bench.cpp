@@ -1,0 +1,121 @@
+// Benchmark of the whole offline plan (read -> written plan directory) against the paper's
+// Table 1: the bundled Loop example and a Shell-sized part (about 112k tets, 12 CCF layers).
+// Release build:  build/release/bench/plan_bench
+
+#include "planner/fea/linear_elastic.hpp"
+#include "planner/io/vtk_writer.hpp"
+#include "planner/job/job_spec.hpp"
+#include "planner/mesh/boundary.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+#include "planner/plan/field_stage.hpp"
+#include "planner/plan/layer_stage.hpp"
+#include "planner/plan/preview_svg.hpp"
+#include "planner/plan/report.hpp"
+#include "planner/plan/toolpaths_json.hpp"
+#include "planner/stopwatch.hpp"
+
+#include <spdlog/spdlog.h>
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+using namespace fibrecell::planner;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PaperRow {
+    const char* model;
+    int tets;
+    double extraction_s;  // per layer
+    double total_s;
+};
+
+double peak_memory_mb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// Plans `job` like `fibrecell plan` and writes the plan directory; prints one row.
+void plan_and_print(const char* name, const JobSpec& job, const PaperRow& paper, int threads,
+                    const fs::path& out) {
+    Stopwatch clock;
+    const FieldStageResult field = run_field_stage(job);
+    const LayerStageResult layers = run_layer_stage(job, field, threads);
+    fs::create_directories(out);
+    write_toolpaths_json((out / "toolpaths.json").string(), "field", layers.layers);
+    std::vector<const TriangleScalars*> none(layers.layers.size(), nullptr);
+    write_preview((out / "preview").string(), layers.layers, layers.outlines, none);
+    write_field_vtk(
+        (out / "field.vtk").string(), field.model.mesh,
+        {&*field.model.stress, &field.field.sigma_e, &field.field.v_e, &field.v_defined});
+    auto report = field_stage_report(job, field);
+    add_layer_stage_report(report, layers);
+    write_json_file((out / "report.json").string(), report);
+    const double total = clock.elapsed();
+    const auto& s = layers.stats;
+    std::printf(
+        "%-6s %7zu %2d+%2d | %5.2f %5.2f %6.3f | %6.3f %6.3f %6.3f %6.3f (%6.3f, %4.0fx) | "
+        "%6.2f (%7.1f, %4.0fx) | %6.0f | %5.1f m %5.3f\n",
+        name, field.model.mesh.tet_count(), s.pla_layers, s.ccf_layers, field.timings.fea,
+        field.timings.read, s.total_s, s.mean_vector_field, s.mean_scalar_field, s.mean_extraction,
+        s.mean_connection, paper.extraction_s,
+        paper.extraction_s / std::max(s.mean_extraction, 1e-9), total, paper.total_s,
+        paper.total_s / total, peak_memory_mb(), s.fibre_length_mm / 1000.0, s.quality.alignment());
+}
+
+// A 140 x 100 x 10 mm Loop-like plate of about 112k structured tets, stress from a 2 kN pull,
+// written as binary VTK so the plan reads it like a user's file.
+std::string write_shell_sized_part(const fs::path& dir) {
+    auto keep = [](const Eigen::Vector3d& c) {
+        const double ox = std::max(0.0, std::abs(c.x() - 70.0) - 15.0);
+        return std::hypot(ox, c.y() - 50.0) >= 20.0 && std::hypot(c.x() - 15, c.y() - 50) >= 6 &&
+               std::hypot(c.x() - 125, c.y() - 50) >= 6;
+    };
+    const TetMesh mesh =
+        structured_tet_mesh({.size = {140, 100, 10}, .cells = {74, 53, 6}, .keep_cell = keep});
+    LoadCase lc;
+    FixedRegion fixed{"x0", {}};
+    ForceRegion pull{"x140", {}, Eigen::Vector3d(2000, 0, 0)};
+    for (const auto& t : boundary_triangles(mesh)) {
+        bool at0 = true, at140 = true;
+        for (int v : t.v) {
+            at0 = at0 && mesh.vertices[v].x() < 1e-9;
+            at140 = at140 && mesh.vertices[v].x() > 140 - 1e-9;
+        }
+        if (at0) fixed.vertices.insert(fixed.vertices.end(), t.v.begin(), t.v.end());
+        if (at140) pull.triangles.push_back(t);
+    }
+    lc.supports.push_back(fixed);
+    lc.loads.push_back(pull);
+    const FeaResult fea = solve_linear_elastic(mesh, lc);
+    const std::string path = (dir / "shell-sized.vtk").string();
+    write_field_vtk(path, mesh, {.stress = &fea.stress});
+    return path;
+}
+
+}  // namespace
+
+int main() {
+    spdlog::set_level(spdlog::level::warn);  // the table is the output
+    const fs::path tmp = fs::temp_directory_path() / "fibrecell-plan-bench";
+    fs::create_directories(tmp);
+    std::printf("Whole offline plan, Release, 2 threads (paper: i7-9750H, 6 cores)\n\n");
+    std::printf("%-6s %7s %5s | %5s %5s %6s | %6s %6s %6s %6s %15s | %23s | %6s | %13s\n", "part",
+                "tets", "layers", "fea", "read", "layers", "field", "scalar", "extr.", "conn.",
+                "(paper, ratio)", "total s (paper, ratio)", "MB", "fibre  align");
+
+    const JobSpec loop = load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+    plan_and_print("Loop", loop, {"Loop", 32473, 8.210, 130.862}, 2, tmp / "loop");
+
+    const std::string mesh = write_shell_sized_part(tmp);
+    const JobSpec shell =
+        parse_job("name: shell-sized\nmodel:\n  mesh: " + mesh + "\n", "shell.job", tmp.string());
+    plan_and_print("Shell", shell, {"Shell", 112080, 24.077, 758.140}, 2, tmp / "shell");
+    fs::remove_all(tmp);
+    return 0;
+}
