@@ -1,6 +1,6 @@
-// The fibre guarantees of the plan on the bundled examples, on every CCF layer: no fibre path
-// shorter than the cutter distance, no two points of different paths closer than W, every point
-// inside the layer's region.
+// The bundled examples: the fibre guarantees on every CCF layer (no fibre path shorter than the
+// cutter distance, no two points of different paths closer than W, every point inside the
+// layer's region) and regression figures (layers, fibre length and paths, quality).
 
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/outline.hpp"
@@ -84,7 +84,7 @@ double distance_to_outline(const LayerOutline& outline, const Eigen::Vector2d& p
     return best;
 }
 
-void check_guarantees(const std::string& job_file) {
+LayerStageStats check_guarantees(const std::string& job_file) {
     const JobSpec job = load_job_file(job_file);
     const LayerStageResult r = run_layer_stage(job, run_field_stage(job), 2);
     const double w = job.planner.fibre_spacing_mm;
@@ -104,14 +104,31 @@ void check_guarantees(const std::string& job_file) {
         EXPECT_GT(min_distance_between_paths(layer.paths, w), w - w / 8) << "layer " << i;
     }
     EXPECT_GT(fibre_layers, 0);
+    return r.stats;
 }
 
 }  // namespace
 
+// Figures measured when the examples were committed (Release and sanitizer builds agree); a
+// change beyond the tolerance is a change of the planner's behaviour and must be explained.
 TEST(ExampleGuarantees, TensileBar) {
-    check_guarantees(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+    const LayerStageStats s =
+        check_guarantees(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+    EXPECT_EQ(s.pla_layers, 5);
+    EXPECT_EQ(s.ccf_layers, 5);
+    EXPECT_NEAR(s.fibre_length_mm / 1000.0, 7.66, 0.2);
+    EXPECT_NEAR(s.fibre_paths, 45, 3);
+    EXPECT_NEAR(s.fibre_min_length_mm, 170.0, 1.0);  // every fibre runs the bar's full length
+    EXPECT_GT(s.quality.alignment(), 0.99);
+    EXPECT_GT(s.quality.density_correlation(), 0.8);
 }
 
 TEST(ExampleGuarantees, Loop) {
-    check_guarantees(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+    const LayerStageStats s = check_guarantees(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+    EXPECT_EQ(s.pla_layers, 13);
+    EXPECT_EQ(s.ccf_layers, 13);
+    EXPECT_NEAR(s.fibre_length_mm / 1000.0, 35.5, 1.5);  // the paper's Loop: 34.7 m
+    EXPECT_NEAR(s.fibre_paths, 164, 10);
+    EXPECT_GT(s.quality.alignment(), 0.99);
+    EXPECT_GT(s.quality.density_correlation(), 0.75);
 }
