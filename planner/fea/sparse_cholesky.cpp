@@ -10,10 +10,27 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
+#include <dlfcn.h>
+
+#include <mutex>
 #include <string>
 
 namespace fibrecell::planner {
 namespace {
+
+// OpenBLAS (Debian's libblas.so.3 when libopenblas0-pthread is installed) spins its worker
+// threads; on a busy 2-core machine that turned a 0.4 s Loop solve into 4-8 s, while one thread
+// loses only ~10% when the machine is idle. The planner parallelises across layers instead.
+// Looked up at run time so the reference BLAS still works.
+void keep_blas_single_threaded() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        using SetThreads = void (*)(int);
+        if (auto set =
+                reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+            set(1);
+    });
+}
 
 // CHOLMOD's supernodal LL^T, opened up enough to read the diagonal of the factor.
 class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
@@ -69,6 +86,7 @@ SparseCholesky::SparseCholesky(LinearSolver solver, double singular_pivot_ratio)
 SparseCholesky::~SparseCholesky() = default;
 
 std::optional<SingularPivot> SparseCholesky::factorise(const SparseMatrix& lower) {
+    keep_blas_single_threaded();
     const Eigen::VectorXd diagonal = lower.diagonal();
     // Worst pivot relative to its own diagonal entry; a mechanism leaves one at rounding level.
     int worst_dof = -1;
