@@ -1,5 +1,7 @@
 #include "planner/fibre/scalar_field.hpp"
 
+#include "planner/fibre/triangle_gradients.hpp"
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -10,31 +12,6 @@
 
 namespace fibrecell::planner {
 namespace {
-
-// Left normal of an edge: for a CCW triangle it points into the triangle.
-Eigen::Vector2d left_normal(const Eigen::Vector2d& d) {
-    return {-d.y(), d.x()};
-}
-
-struct TriangleGradients {
-    double area;
-    std::array<Eigen::Vector2d, 3> grad;  // gradients of the three linear hat functions
-};
-
-TriangleGradients gradients(const LayerMesh& layer, int f) {
-    const auto& t = layer.triangles[f];
-    const Eigen::Vector2d& p0 = layer.vertices[t[0]];
-    const Eigen::Vector2d& p1 = layer.vertices[t[1]];
-    const Eigen::Vector2d& p2 = layer.vertices[t[2]];
-    const Eigen::Vector2d e1 = p1 - p0, e2 = p2 - p0;
-    const double twice_area = e1.x() * e2.y() - e1.y() * e2.x();
-    if (!(twice_area > 0))
-        throw std::invalid_argument("layer at z = " + std::to_string(layer.z) + ": triangle " +
-                                    std::to_string(f) + " has no positive area");
-    return {0.5 * twice_area,
-            {left_normal(p2 - p1) / twice_area, left_normal(p0 - p2) / twice_area,
-             left_normal(p1 - p0) / twice_area}};
-}
 
 // Union-find over vertices joined by triangles: the separate pieces of a layer.
 std::vector<int> piece_roots(const LayerMesh& layer) {
@@ -55,12 +32,20 @@ std::vector<int> piece_roots(const LayerMesh& layer) {
 }  // namespace
 
 Eigen::Vector2d triangle_gradient(const LayerMesh& layer, const std::vector<double>& s, int f) {
-    const TriangleGradients g = gradients(layer, f);
+    const TriangleGradients g = triangle_gradients(layer, f);
     const auto& t = layer.triangles[f];
     return s[t[0]] * g.grad[0] + s[t[1]] * g.grad[1] + s[t[2]] * g.grad[2];
 }
 
 std::vector<double> scalar_field(const LayerMesh& layer, const std::vector<Eigen::Vector2d>& u_f) {
+    std::vector<Eigen::Vector2d> rotated;  // u rotated by +90 degrees: isocurves run along u
+    rotated.reserve(u_f.size());
+    for (const auto& u : u_f) rotated.emplace_back(-u.y(), u.x());
+    return fit_gradient(layer, rotated);
+}
+
+std::vector<double> fit_gradient(const LayerMesh& layer,
+                                 const std::vector<Eigen::Vector2d>& target) {
     const int nv = static_cast<int>(layer.vertices.size());
     // Pin the first vertex of every piece (s = 0 there); the others are unknowns.
     const std::vector<int> root = piece_roots(layer);
@@ -69,18 +54,17 @@ std::vector<double> scalar_field(const LayerMesh& layer, const std::vector<Eigen
     for (int v = 0; v < nv; ++v)
         if (root[v] != v) unknown[v] = n++;
 
-    // Normal equations of the least-squares fit: (sum_f A G^T G) s = sum_f A G^T rot90(u_f).
+    // Normal equations of the least-squares fit: (sum_f A G^T G) s = sum_f A G^T target_f.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(layer.triangles.size() * 9);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (std::size_t f = 0; f < layer.triangles.size(); ++f) {
-        const TriangleGradients g = gradients(layer, static_cast<int>(f));
-        const Eigen::Vector2d target(-u_f[f].y(), u_f[f].x());  // u rotated by +90 degrees
+        const TriangleGradients g = triangle_gradients(layer, static_cast<int>(f));
         const auto& t = layer.triangles[f];
         for (int a = 0; a < 3; ++a) {
             const int ia = unknown[t[a]];
             if (ia < 0) continue;
-            rhs[ia] += g.area * g.grad[a].dot(target);
+            rhs[ia] += g.area * g.grad[a].dot(target[f]);
             for (int b = 0; b < 3; ++b)
                 if (const int ib = unknown[t[b]]; ib >= 0)
                     entries.emplace_back(ia, ib, g.area * g.grad[a].dot(g.grad[b]));

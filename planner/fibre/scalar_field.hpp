@@ -18,6 +18,11 @@ namespace fibrecell::planner {
 // Throws std::invalid_argument on a degenerate (zero-area) triangle, naming it.
 std::vector<double> scalar_field(const LayerMesh& layer, const std::vector<Eigen::Vector2d>& u_f);
 
+// The piecewise-linear s (#V) minimising sum_f area_f |grad s_f - target_f|^2, with the first
+// vertex of each connected piece pinned to 0. scalar_field() and the heat method both use it.
+std::vector<double> fit_gradient(const LayerMesh& layer,
+                                 const std::vector<Eigen::Vector2d>& target);
+
 // Gradient of the piecewise-linear field s on triangle f [units of s per mm].
 Eigen::Vector2d triangle_gradient(const LayerMesh& layer, const std::vector<double>& s, int f);
 
