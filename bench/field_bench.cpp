@@ -4,6 +4,7 @@
 // reading of Eq. 2 removes on the reference data. Run from a Release build:
 //   build/release/bench/field_bench [--reference ../shared/data/reference-fea]
 
+#include "bench_parts.hpp"
 #include "planner/fea/linear_elastic.hpp"
 #include "planner/field/incompatibility.hpp"
 #include "planner/field/mst_reorientation.hpp"
@@ -11,8 +12,6 @@
 #include "planner/io/read_model.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/mesh/adjacency.hpp"
-#include "planner/mesh/boundary.hpp"
-#include "planner/mesh/structured_mesh.hpp"
 #include "planner/stopwatch.hpp"
 
 #include <cmath>
@@ -23,6 +22,8 @@
 #include <vector>
 
 using namespace fibrecell::planner;
+using fibrecell::bench::end_load;
+using fibrecell::bench::loop_like_plate;
 
 namespace {
 
@@ -37,50 +38,6 @@ constexpr PaperRow kPaper[] = {{"Wrench", 14002, 2.883, 0.329},
                                {"Loop", 32473, 17.684, 0.810},
                                {"Piston", 85558, 215.88, 2.501},
                                {"Shell", 112080, 400.683, 3.262}};
-
-// A Loop-like plate (140 x 100 x 10 mm, central opening, two pin holes) meshed with about
-// `target_tets` structured tets.
-TetMesh loop_like_plate(int target_tets) {
-    auto keep = [](const Eigen::Vector3d& c) {
-        const double ox = std::max(0.0, std::abs(c.x() - 70.0) - 15.0);  // 70 x 40 stadium
-        const bool in_opening = std::hypot(ox, c.y() - 50.0) < 20.0;
-        const bool in_pin = std::hypot(c.x() - 15.0, c.y() - 50.0) < 6.0 ||
-                            std::hypot(c.x() - 125.0, c.y() - 50.0) < 6.0;
-        return !in_opening && !in_pin;
-    };
-    // Guess the cell size from the plate volume, then correct it once by the measured count.
-    auto mesh_with = [&](double h) {
-        StructuredMeshOptions o;
-        o.size = {140, 100, 10};
-        o.cells = {static_cast<int>(std::lround(140 / h)), static_cast<int>(std::lround(100 / h)),
-                   std::max(1, static_cast<int>(std::lround(10 / h)))};
-        o.keep_cell = keep;
-        return structured_tet_mesh(o);
-    };
-    const double h = std::cbrt(6.0 * 140.0 * 100.0 * 10.0 / target_tets);
-    const double ratio = static_cast<double>(mesh_with(h).tet_count()) / target_tets;
-    return mesh_with(h * std::cbrt(ratio));
-}
-
-// Clamped at x = 0, pulled with 2 kN at x = 140.
-LoadCase end_load(const TetMesh& mesh) {
-    const auto boundary = boundary_triangles(mesh);
-    LoadCase lc;
-    FixedRegion fixed{"x0", {}};
-    ForceRegion pull{"x140", {}, Eigen::Vector3d(2000, 0, 0)};
-    for (const auto& t : boundary) {
-        bool at0 = true, at140 = true;
-        for (int v : t.v) {
-            at0 = at0 && mesh.vertices[v].x() < 1e-9;
-            at140 = at140 && mesh.vertices[v].x() > 140 - 1e-9;
-        }
-        if (at0) fixed.vertices.insert(fixed.vertices.end(), t.v.begin(), t.v.end());
-        if (at140) pull.triangles.push_back(t);
-    }
-    lc.supports.push_back(fixed);
-    lc.loads.push_back(pull);
-    return lc;
-}
 
 struct FieldTimes {
     double principal = 0, mst = 0, removal = 0;

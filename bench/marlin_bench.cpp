@@ -47,8 +47,8 @@ int main() {
         us.push_back((written_ns.load() - t.time_since_epoch().count()) / 1000.0);
     }
     std::sort(us.begin(), us.end());
-    std::printf("request->written latency: median %.1f us, p99 %.1f us (n=%zu)\n", us[us.size() / 2],
-                us[us.size() * 99 / 100], us.size());
+    std::printf("request->written latency: median %.1f us, p99 %.1f us (n=%zu)\n",
+                us[us.size() / 2], us[us.size() * 99 / 100], us.size());
     link.deactivate();
     std::filesystem::remove_all(dir);
     return out.ok() ? 0 : 1;

@@ -2,11 +2,10 @@
 // Table 1: the bundled Loop example and a Shell-sized part (about 112k tets, 12 CCF layers).
 // Release build:  build/release/bench/plan_bench
 
+#include "bench_parts.hpp"
 #include "planner/fea/linear_elastic.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
-#include "planner/mesh/boundary.hpp"
-#include "planner/mesh/structured_mesh.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "planner/plan/preview_svg.hpp"
@@ -68,31 +67,11 @@ void plan_and_print(const char* name, const JobSpec& job, const PaperRow& paper,
         paper.total_s / total, peak_memory_mb(), s.fibre_length_mm / 1000.0, s.quality.alignment());
 }
 
-// A 140 x 100 x 10 mm Loop-like plate of about 112k structured tets, stress from a 2 kN pull,
-// written as binary VTK so the plan reads it like a user's file.
+// A Shell-sized Loop-like plate (about 112k tets), stress from a 2 kN pull, written as binary
+// VTK so the plan reads it like a user's file.
 std::string write_shell_sized_part(const fs::path& dir) {
-    auto keep = [](const Eigen::Vector3d& c) {
-        const double ox = std::max(0.0, std::abs(c.x() - 70.0) - 15.0);
-        return std::hypot(ox, c.y() - 50.0) >= 20.0 && std::hypot(c.x() - 15, c.y() - 50) >= 6 &&
-               std::hypot(c.x() - 125, c.y() - 50) >= 6;
-    };
-    const TetMesh mesh =
-        structured_tet_mesh({.size = {140, 100, 10}, .cells = {74, 53, 6}, .keep_cell = keep});
-    LoadCase lc;
-    FixedRegion fixed{"x0", {}};
-    ForceRegion pull{"x140", {}, Eigen::Vector3d(2000, 0, 0)};
-    for (const auto& t : boundary_triangles(mesh)) {
-        bool at0 = true, at140 = true;
-        for (int v : t.v) {
-            at0 = at0 && mesh.vertices[v].x() < 1e-9;
-            at140 = at140 && mesh.vertices[v].x() > 140 - 1e-9;
-        }
-        if (at0) fixed.vertices.insert(fixed.vertices.end(), t.v.begin(), t.v.end());
-        if (at140) pull.triangles.push_back(t);
-    }
-    lc.supports.push_back(fixed);
-    lc.loads.push_back(pull);
-    const FeaResult fea = solve_linear_elastic(mesh, lc);
+    const TetMesh mesh = fibrecell::bench::loop_like_plate(112080);
+    const FeaResult fea = solve_linear_elastic(mesh, fibrecell::bench::end_load(mesh));
     const std::string path = (dir / "shell-sized.vtk").string();
     write_field_vtk(path, mesh, {.stress = &fea.stress});
     return path;
