@@ -13,8 +13,13 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace io_test {
+
+// The unit cube of the test data: vertex i = (i&1, i>>1&1, i>>2&1), six positive tets.
+inline const std::vector<fibrecell::planner::Tet> kCubeTets = {
+    {0, 1, 3, 7}, {0, 5, 1, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 6, 4, 7}};
 
 inline std::string data_path(const std::string& name) {
     return std::string(FIBRECELL_TEST_DATA) + "/io/" + name;

@@ -6,12 +6,10 @@
 
 using namespace fibrecell::planner;
 using io_test::cube_stress;
+using io_test::kCubeTets;
 using io_test::replaced;
 
 namespace {
-
-const std::vector<Tet> kCubeTets = {{0, 1, 3, 7}, {0, 5, 1, 7}, {0, 3, 2, 7},
-                                    {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 6, 4, 7}};
 
 std::string msh22() {
     return io_test::read_text(io_test::data_path("cube22.msh"));
