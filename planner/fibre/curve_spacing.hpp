@@ -13,4 +13,9 @@ namespace fibrecell::planner {
 // always involves a vertex of one of them, so vertex-to-segment distances are exact.
 double min_neighbour_distance(const std::vector<Polyline>& curves, double cap);
 
+// Minimal distance [mm] between points of different paths (vertex to segment), capped the same
+// way: the spacing a finished fibre layer actually has.
+double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>>& paths,
+                                  const std::vector<char>& closed, double cap);
+
 }  // namespace fibrecell::planner

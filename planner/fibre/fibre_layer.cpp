@@ -1,6 +1,10 @@
 #include "planner/fibre/fibre_layer.hpp"
 
 #include "planner/fibre/adaptive_isocurves.hpp"
+#include "planner/fibre/boundary_conformal.hpp"
+#include "planner/fibre/curve_spacing.hpp"
+#include "planner/fibre/end_joins.hpp"
+#include "planner/fibre/heat_distance.hpp"
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/scalar_field.hpp"
 #include "planner/stopwatch.hpp"
@@ -9,14 +13,65 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace fibrecell::planner {
+
+namespace {
+
+// The boundary sources that fall on one piece, in the piece's own vertex numbers.
+std::vector<int> piece_sources(const LayerPiece& piece, const std::vector<int>& layer_sources,
+                               std::size_t layer_vertices) {
+    if (layer_sources.empty()) return {};
+    std::vector<int> local(layer_vertices, -1);
+    for (int v = 0; v < static_cast<int>(piece.vertex_of_layer.size()); ++v)
+        local[piece.vertex_of_layer[v]] = v;
+    std::vector<int> out;
+    for (int s : layer_sources)
+        if (local[s] >= 0) out.push_back(local[s]);
+    return out;
+}
+
+// Section 4.4 on one piece: boundary rings and truncation where the piece has chosen boundary,
+// then the joins of close ends. Adds the paths to `paths`, the joins to `joins`.
+void connect_piece(const LayerPiece& piece, const std::vector<int>& sources,
+                   std::vector<Polyline> curves, double w, std::vector<Toolpath>& paths,
+                   std::size_t& joins) {
+    std::vector<Polyline> rings;
+    std::vector<Link> links;
+    if (!sources.empty()) {
+        BoundaryConformal b = conform_to_boundary(piece.mesh, heat_distance(piece.mesh, sources),
+                                                  curves, {.spacing_mm = w});
+        rings = std::move(b.boundary);
+        curves = std::move(b.pieces);
+        links = std::move(b.links);
+    }
+    std::vector<Link> close =
+        join_close_ends(curves, links, rings, {.max_gap_mm = 2 * w, .clearance_mm = w});
+    links.insert(links.end(), close.begin(), close.end());
+    joins += links.size();
+    for (Polyline& c : join_pieces(curves, links))
+        paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
+    for (Polyline& r : rings)
+        paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});
+}
+
+double min_spacing(const std::vector<Toolpath>& paths, double cap) {
+    if (paths.size() < 2) return 0;
+    std::vector<std::vector<Eigen::Vector2d>> points;
+    std::vector<char> closed;
+    for (const Toolpath& p : paths) {
+        points.push_back(p.points);
+        closed.push_back(p.closed);
+    }
+    return min_distance_between_paths(points, closed, cap);
+}
+
+}  // namespace
 
 FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
                             const std::vector<double>& sigma_e,
                             const std::vector<std::uint8_t>& v_defined,
+                            const std::vector<int>& boundary_sources,
                             const FibreLayerOptions& options) {
     FibreLayer out;
     Stopwatch clock;
@@ -24,7 +79,6 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
     out.timings.vector_field = clock.lap();
 
     std::vector<Toolpath> paths;
-    out.min_spacing_mm = std::numeric_limits<double>::infinity();
     for (const LayerPiece& piece : split_pieces(layer)) {
         const bool loaded = std::any_of(
             piece.mesh.triangle_tet.begin(), piece.mesh.triangle_tet.end(),
@@ -36,7 +90,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         clock.lap();
         const std::vector<double> s = scalar_field(piece.mesh, u);
         out.timings.scalar_field += clock.lap();
-        const AdaptiveIsocurves curves =
+        AdaptiveIsocurves curves =
             adaptive_isocurves(piece.mesh, s, {.spacing_mm = options.spacing_mm});
         out.timings.extraction += clock.lap();
         spdlog::debug(
@@ -45,24 +99,24 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
             layer.z, piece.mesh.triangles.size(), curves.geodesic_span_mm, curves.count,
             curves.extractions, curves.min_distance_mm);
         if (curves.count == 0) continue;
-        if (curves.count > 1)
-            out.min_spacing_mm = std::min(out.min_spacing_mm, curves.min_distance_mm);
-        for (const Polyline& c : curves.curves) {
-            if (polyline_length(c) < options.cutter_distance_mm) {
-                ++out.dropped_short;
-                continue;
-            }
-            paths.push_back({PathRole::fibre, c.closed, c.points});
-        }
+        connect_piece(piece, piece_sources(piece, boundary_sources, layer.vertices.size()),
+                      std::move(curves.curves), options.spacing_mm, paths, out.joins);
+        out.timings.connection += clock.lap();
     }
+    // The cutter sits this far behind the nozzle: a shorter path cannot be laid and cut.
+    std::erase_if(paths, [&](const Toolpath& p) {
+        const bool too_short = path_length(p) < options.cutter_distance_mm;
+        out.dropped_short += too_short;
+        return too_short;
+    });
     if (paths.empty())
         out.warnings.push_back("layer at z = " + std::to_string(layer.z) +
                                ": no fibre path (no usable tension, or every isocurve shorter "
                                "than the cutter distance)");
     clock.lap();
     out.paths = order_nearest(std::move(paths), Eigen::Vector2d::Zero());
-    out.timings.connection = clock.lap();
-    if (!std::isfinite(out.min_spacing_mm)) out.min_spacing_mm = 0;
+    out.min_spacing_mm = min_spacing(out.paths, 3 * options.spacing_mm);
+    out.timings.connection += clock.lap();
     return out;
 }
 

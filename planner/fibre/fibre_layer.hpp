@@ -1,6 +1,7 @@
 #pragma once
-// Field-based fibre paths of one CCF layer (paper Sections 4.2-4.3): the in-plane field, the
-// scalar field per piece, adaptive isocurves, and the cutter's minimum length.
+// Field-based fibre paths of one CCF layer (paper Sections 4.2-4.4): the in-plane field, the
+// scalar field per piece, adaptive isocurves, boundary-conformal rings and the connection of
+// curves into continuous paths, and the cutter's minimum length.
 
 #include "planner/fibre/layer_field.hpp"
 #include "planner/layers/layer_mesh.hpp"
@@ -32,18 +33,22 @@ struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
 };
 
 struct FibreLayer {
-    std::vector<Toolpath> paths;        // role fibre, in print order
-    LayerField field;                   // per triangle of the layer (for previews)
-    std::size_t dropped_short = 0;      // isocurves shorter than the cutter distance
-    double min_spacing_mm = 0;          // smallest neighbour distance over the pieces
+    std::vector<Toolpath> paths;    // roles fibre and fibre-boundary, in print order
+    LayerField field;               // per triangle of the layer (for previews)
+    std::size_t dropped_short = 0;  // paths shorter than the cutter distance
+    std::size_t joins = 0;          // links made by the connection (Steps 3-4)
+    // Smallest distance between two different paths, capped at 3W (0: fewer than two paths).
+    double min_spacing_mm = 0;
     std::vector<std::string> warnings;  // e.g. "no tension in this layer"
     FibreLayerTimings timings;
 };
 
-// v_e, sigma_e, v_defined: per tet, v_e in the frame of `layer` (placed).
+// v_e, sigma_e, v_defined: per tet, v_e in the frame of `layer` (placed). boundary_sources:
+// vertices of `layer` on the boundary chosen for boundary-conformal fibres (may be empty).
 FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
                             const std::vector<double>& sigma_e,
                             const std::vector<std::uint8_t>& v_defined,
+                            const std::vector<int>& boundary_sources,
                             const FibreLayerOptions& options = {});
 
 }  // namespace fibrecell::planner

@@ -1,59 +1,12 @@
 #include "planner/plan/fibre_quality.hpp"
 
+#include "planner/layers/triangle_locator.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
 namespace fibrecell::planner {
-namespace {
-
-// Uniform grid of triangles for point location.
-class TriangleLocator {
-  public:
-    TriangleLocator(const LayerMesh& layer, double cell) : layer_(layer), cell_(cell) {
-        for (std::size_t f = 0; f < layer.triangles.size(); ++f) {
-            Eigen::Vector2d lo = layer.vertices[layer.triangles[f][0]], hi = lo;
-            for (int v : layer.triangles[f]) {
-                lo = lo.cwiseMin(layer.vertices[v]);
-                hi = hi.cwiseMax(layer.vertices[v]);
-            }
-            for (long x = index(lo.x()); x <= index(hi.x()); ++x)
-                for (long y = index(lo.y()); y <= index(hi.y()); ++y)
-                    cells_[key(x, y)].push_back(static_cast<int>(f));
-        }
-    }
-
-    // The triangle containing p, or -1.
-    int locate(const Eigen::Vector2d& p) const {
-        const auto it = cells_.find(key(index(p.x()), index(p.y())));
-        if (it == cells_.end()) return -1;
-        for (int f : it->second)
-            if (contains(f, p)) return f;
-        return -1;
-    }
-
-  private:
-    bool contains(int f, const Eigen::Vector2d& p) const {
-        const auto& t = layer_.triangles[f];
-        auto side = [&](int a, int b) {
-            const Eigen::Vector2d e = layer_.vertices[b] - layer_.vertices[a];
-            const Eigen::Vector2d d = p - layer_.vertices[a];
-            return e.x() * d.y() - e.y() * d.x();
-        };
-        const double tol = -1e-9;
-        return side(t[0], t[1]) >= tol && side(t[1], t[2]) >= tol && side(t[2], t[0]) >= tol;
-    }
-    long index(double v) const { return std::lround(std::floor(v / cell_)); }
-    static long long key(long x, long y) {
-        return (static_cast<long long>(x) << 32) ^ (static_cast<long long>(y) & 0xffffffffLL);
-    }
-
-    const LayerMesh& layer_;
-    double cell_;
-    std::unordered_map<long long, std::vector<int>> cells_;
-};
-
-}  // namespace
 
 FibreQualitySums& FibreQualitySums::operator+=(const FibreQualitySums& o) {
     weighted_cos += o.weighted_cos;

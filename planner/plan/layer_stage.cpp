@@ -1,10 +1,12 @@
 #include "planner/plan/layer_stage.hpp"
 
+#include "planner/fibre/boundary_sources.hpp"
 #include "planner/fibre/fibre_layer.hpp"
 #include "planner/layers/layer_schedule.hpp"
 #include "planner/layers/outline.hpp"
 #include "planner/layers/placement.hpp"
 #include "planner/layers/slice.hpp"
+#include "planner/mesh/region.hpp"
 #include "planner/stopwatch.hpp"
 #include "planner/toolpaths/contour_zigzag.hpp"
 #include "planner/toolpaths/path_order.hpp"
@@ -23,10 +25,28 @@ struct LayerWork {
     std::vector<double> sigma;
     std::vector<std::string> warnings;
     int dropped_short = 0;
+    int joins = 0;
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
 };
+
+// The part's boundary faces in the job's boundary_fibres regions, on the bed.
+SelectedFaces boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
+                                       const TetMesh& placed) {
+    if (job.boundary_fibre_regions.empty() || job.planner.strategy != Strategy::field) return {};
+    const std::vector<BoundaryTriangle> boundary = boundary_triangles(model.mesh);
+    std::vector<BoundaryTriangle> chosen;
+    for (const std::string& name : job.boundary_fibre_regions) {
+        std::vector<BoundaryTriangle> t = select_triangles(model, boundary, *job.find_region(name));
+        if (t.empty())
+            throw std::invalid_argument("region '" + name +
+                                        "' (boundary_fibres) selects no boundary triangle of the "
+                                        "mesh");
+        chosen.insert(chosen.end(), t.begin(), t.end());
+    }
+    return selected_faces(placed, chosen);
+}
 
 }  // namespace
 
@@ -58,6 +78,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                    .sigma_cap_percentile = job.planner.sigma_cap_percentile};
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
     fibre.cutter_distance_mm = job.planner.cutter_distance_mm;
+    const SelectedFaces boundary_fibre_faces = boundary_fibre_selection(job, field.model, placed);
 
     std::vector<LayerWork> work(schedule.size());
     std::atomic<std::size_t> next{0}, finished{0};
@@ -78,11 +99,13 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                     w.layer.paths = std::move(r.paths);
                     w.dropped_short = r.dropped_short;
                 } else {
-                    FibreLayer r = plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
-                                                    field.v_defined, fibre);
+                    FibreLayer r = plan_fibre_layer(
+                        out.sections[i], v_placed, field.field.sigma_e, field.v_defined,
+                        boundary_sources(out.sections[i], boundary_fibre_faces), fibre);
                     w.layer.paths = std::move(r.paths);
                     w.dropped_short = static_cast<int>(r.dropped_short);
                     w.min_spacing = r.min_spacing_mm;
+                    w.joins = static_cast<int>(r.joins);
                     w.sigma = std::move(r.field.sigma_f);
                     w.warnings = std::move(r.warnings);
                     w.timings = r.timings;
@@ -119,9 +142,11 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             }
             st.fibre_length_mm += len;
             ++st.fibre_paths;
+            st.fibre_boundary_paths += p.role == PathRole::fibre_boundary;
             min_length = min_length == 0 ? len : std::min(min_length, len);
         }
         st.dropped_short += w.dropped_short;
+        st.fibre_joins += w.joins;
         if (w.min_spacing > 0)
             st.fibre_min_spacing_mm = st.fibre_min_spacing_mm == 0
                                           ? w.min_spacing

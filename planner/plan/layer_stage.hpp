@@ -19,8 +19,12 @@ struct LayerStageStats {
     int pla_layers = 0, ccf_layers = 0;
     double fibre_length_mm = 0, pla_length_mm = 0;
     int fibre_paths = 0, dropped_short = 0;
-    double fibre_min_spacing_mm = 0;  // smallest spacing of field-strategy layers (0: none)
-    double fibre_min_length_mm = 0;   // shortest fibre path kept (0: none)
+    int fibre_boundary_paths = 0;  // of fibre_paths, boundary-conformal rings (Section 4.4)
+    int fibre_joins = 0;           // curve ends joined by the connection (Section 4.4)
+    // Smallest distance between different fibre paths of a field-strategy layer, capped at 3W
+    // (0: none).
+    double fibre_min_spacing_mm = 0;
+    double fibre_min_length_mm = 0;  // shortest fibre path kept (0: none)
     // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
     double total_s = 0;        // all per-layer work, wall clock

@@ -68,11 +68,11 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
     const LayerStageStats& s = layers.stats;
     report["stage"] = "layers";
     report["layers"] = {{"pla", s.pla_layers}, {"ccf", s.ccf_layers}};
-    report["fibre"] = {{"length_m", s.fibre_length_mm / 1000.0},
-                       {"paths", s.fibre_paths},
-                       {"dropped_short", s.dropped_short},
-                       {"min_spacing_mm", s.fibre_min_spacing_mm},
-                       {"min_length_mm", s.fibre_min_length_mm}};
+    report["fibre"] = {
+        {"length_m", s.fibre_length_mm / 1000.0},   {"paths", s.fibre_paths},
+        {"boundary_paths", s.fibre_boundary_paths}, {"joins", s.fibre_joins},
+        {"dropped_short", s.dropped_short},         {"min_spacing_mm", s.fibre_min_spacing_mm},
+        {"min_length_mm", s.fibre_min_length_mm}};
     report["pla"] = {{"length_m", s.pla_length_mm / 1000.0}};
     report["timings_s"]["layers"] = s.total_s;
     report["timings_s"]["per_layer_mean"] = {{"vector_field", s.mean_vector_field},

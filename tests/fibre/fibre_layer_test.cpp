@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <set>
+
 using namespace fibrecell::planner;
 using fibrecell::planner::testing::grid_layer;
 
@@ -21,32 +24,73 @@ struct PlateInTension {
 
 TEST(FibreLayer, PlateInUniformTensionGetsStraightFibresAlongTheLoad) {
     PlateInTension t;
-    const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined);
-    ASSERT_GE(r.paths.size(), 16u);
-    EXPECT_EQ(r.dropped_short, 0u);
-    EXPECT_GT(r.min_spacing_mm, 1.0);
-    EXPECT_LE(r.min_spacing_mm, 1.25);
+    const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, {}, {});
+    // Straight runs from end to end along the load; Step 4 joins neighbouring runs' ends (less
+    // than 2W apart) across the plate's ends, so the runs make up serpentines.
+    std::set<double> run_y;
     for (const auto& p : r.paths) {
         EXPECT_EQ(p.role, PathRole::fibre);
-        EXPECT_NEAR((p.points.back() - p.points.front()).norm(), 60.0, 1e-9);  // end to end
-        for (const auto& q : p.points) EXPECT_NEAR(q.y(), p.points.front().y(), 1e-9);
+        EXPECT_FALSE(p.closed);
+        for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
+            const Eigen::Vector2d a = p.points[i], b = p.points[i + 1];
+            if (std::abs(a.y() - b.y()) < 1e-6) {
+                run_y.insert(std::round(a.y() * 1e6) / 1e6);
+                continue;
+            }
+            const bool at_an_end = (std::abs(a.x()) < 1e-9 && std::abs(b.x()) < 1e-9) ||
+                                   (std::abs(a.x() - 60) < 1e-9 && std::abs(b.x() - 60) < 1e-9);
+            EXPECT_TRUE(at_an_end) << a.transpose() << " -> " << b.transpose();
+            EXPECT_LT((b - a).norm(), 2.0);
+        }
+        EXPECT_TRUE(std::abs(p.points.front().x()) < 1e-9 ||
+                    std::abs(p.points.front().x() - 60) < 1e-9);  // starts at a plate end
     }
+    ASSERT_GE(run_y.size(), 16u);
+    for (auto it = std::next(run_y.begin()); it != run_y.end(); ++it) {
+        EXPECT_GE(*it - *std::prev(it), 1.0 - 1e-6);
+        EXPECT_LE(*it - *std::prev(it), 1.25);
+    }
+    EXPECT_LT(r.paths.size(), run_y.size() / 2) << "most runs are joined";
+    EXPECT_EQ(r.joins, run_y.size() - r.paths.size());
+    EXPECT_EQ(r.dropped_short, 0u);
     EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(FibreLayer, BoundaryRingsFollowTheChosenEdgeAndCutEndsAreLinkedAlongIt) {
+    PlateInTension t;
+    std::vector<int> left_edge;
+    for (int v = 0; v < static_cast<int>(t.layer.vertices.size()); ++v)
+        if (t.layer.vertices[v].x() == 0) left_edge.push_back(v);
+    const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, left_edge,
+                                          {.cutter_distance_mm = 10});
+    int rings = 0;
+    for (const auto& p : r.paths) {
+        if (p.role == PathRole::fibre_boundary) {
+            ++rings;
+            for (const auto& q : p.points) EXPECT_NEAR(q.x(), 1.5, 0.1);  // d = 1.5W
+            continue;
+        }
+        for (const auto& q : p.points) EXPECT_GE(q.x(), 2.5 - 0.1);  // cut back to d = 2.5W
+    }
+    EXPECT_EQ(rings, 1);
+    // The spacing rule holds between different paths, rings included.
+    EXPECT_GE(r.min_spacing_mm, 1.0 - 1e-9);
+    EXPECT_GT(r.joins, 10u);
 }
 
 TEST(FibreLayer, PathsShorterThanTheCutterDistanceAreDroppedWithAWarning) {
     PlateInTension t;
     const FibreLayer r =
-        plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, {.cutter_distance_mm = 61});
-    EXPECT_TRUE(r.paths.empty());
-    EXPECT_GE(r.dropped_short, 16u);
+        plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, {}, {.cutter_distance_mm = 2000});
+    EXPECT_TRUE(r.paths.empty());  // the serpentines are about 1.1 m each
+    EXPECT_GE(r.dropped_short, 1u);
     ASSERT_EQ(r.warnings.size(), 1u);
 }
 
 TEST(FibreLayer, NoTensionGivesNoFibresAndAWarning) {
     PlateInTension t;
     std::fill(t.sigma_e.begin(), t.sigma_e.end(), 1e-5);  // rule 3 everywhere
-    const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined,
+    const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, {},
                                           {.field = {.p = 1.0}, .spacing_mm = 1.0});
     EXPECT_TRUE(r.paths.empty());
     EXPECT_EQ(r.warnings.size(), 1u);

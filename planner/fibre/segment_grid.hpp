@@ -1,0 +1,56 @@
+#pragma once
+// A uniform grid of tagged 2D segments for "what is near this point" queries: each query only
+// looks at the 3 x 3 cells around the point, never at all segments.
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace fibrecell::planner {
+
+struct TaggedSegment {
+    Eigen::Vector2d a, b;  // [mm]
+    int tag = 0;           // what the segment belongs to (a curve level, a path)
+};
+
+// Distance [mm] from p to the segment ab.
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                              const Eigen::Vector2d& b);
+
+class SegmentGrid {
+  public:
+    // cell_mm: the largest distance a query needs to see; nearer segments are always visited.
+    explicit SegmentGrid(double cell_mm) : cell_(cell_mm) {}
+
+    void insert(const TaggedSegment& s);
+    // Every segment of a polyline (and its closing segment when closed), with one tag.
+    void insert_polyline(const std::vector<Eigen::Vector2d>& points, bool closed, int tag);
+
+    // Calls visit(segment) for the segments in the 3 x 3 cells around p (a segment may be
+    // visited more than once).
+    template <class Visit>
+    void around(const Eigen::Vector2d& p, Visit visit) const {
+        const auto [cx, cy] = cell_of(p);
+        for (long x = cx - 1; x <= cx + 1; ++x)
+            for (long y = cy - 1; y <= cy + 1; ++y)
+                if (auto it = cells_.find(key(x, y)); it != cells_.end())
+                    for (int id : it->second) visit(segments_[id]);
+    }
+
+  private:
+    std::pair<long, long> cell_of(const Eigen::Vector2d& p) const {
+        return {std::lround(std::floor(p.x() / cell_)), std::lround(std::floor(p.y() / cell_))};
+    }
+    static long long key(long x, long y) {
+        return (static_cast<long long>(x) << 32) ^ (static_cast<long long>(y) & 0xffffffffLL);
+    }
+
+    double cell_;
+    std::vector<TaggedSegment> segments_;
+    std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+}  // namespace fibrecell::planner
