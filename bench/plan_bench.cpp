@@ -67,6 +67,28 @@ void plan_and_print(const char* name, const JobSpec& job, const PaperRow& paper,
         paper.total_s / total, peak_memory_mb(), s.fibre_length_mm / 1000.0, s.quality.alignment());
 }
 
+// The Loop under the field strategy and the load-independent baseline. The baseline fills every
+// CCF layer, so it is also run on every 4th PLA layer only: about the field strategy's fibre
+// length, the comparison the paper makes (its baseline: 35.9 m).
+void compare_strategies(const JobSpec& loop) {
+    const FieldStageResult field = run_field_stage(loop);
+    auto row = [&](const char* name, const JobSpec& job) {
+        const LayerStageStats s = run_layer_stage(job, field, 2).stats;
+        std::printf("%-34s %3d CCF layers %7.1f m  alignment %5.3f  density corr. %6.3f\n", name,
+                    s.ccf_layers, s.fibre_length_mm / 1000.0, s.quality.alignment(),
+                    s.quality.density_correlation());
+    };
+    std::printf("\nLoop, fibre strategies (alignment: stress-weighted |cos| to the tension)\n");
+    row("field", loop);
+    JobSpec baseline = loop;
+    baseline.planner.strategy = Strategy::contour_zigzag;
+    row("contour-zigzag", baseline);
+    baseline.layers.ccf_on_all = false;
+    baseline.layers.ccf_every = 4;
+    row("contour-zigzag, every 4th layer", baseline);
+    std::printf("\n");
+}
+
 // A Shell-sized Loop-like plate (about 112k tets), stress from a 2 kN pull, written as binary
 // VTK so the plan reads it like a user's file.
 std::string write_shell_sized_part(const fs::path& dir) {
@@ -91,6 +113,7 @@ int main() {
     const JobSpec loop = load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
     plan_and_print("Loop", loop, {"Loop", 32473, 8.210, 130.862}, 2, tmp / "loop");
 
+    compare_strategies(loop);
     const std::string mesh = write_shell_sized_part(tmp);
     const JobSpec shell =
         parse_job("name: shell-sized\nmodel:\n  mesh: " + mesh + "\n", "shell.job", tmp.string());
