@@ -17,6 +17,7 @@ packages=(
     libopenblas0-pthread  # CHOLMOD factorises ~4x faster than with the reference BLAS
     libspdlog-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpolyclipping-dev
     libmodbus-dev libsystemd-dev
+    libssl-dev  # libcrypto MD5 for RWS digest authentication
     libgtest-dev libgmock-dev
 )
 

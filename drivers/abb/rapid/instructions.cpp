@@ -133,6 +133,7 @@ const InstructionInfo instructions[] = {
     {"Stop", p_none, o_stop, no_move},
     {"StopMove", p_none, o_stopmove, no_move},
     {"StartMove", p_none, o_startmove, no_move},
+    {"ClearPath", p_none, o_none, no_move},
     {"ExitCycle", p_none, o_none, no_move},
     {"Break", p_none, o_none, no_move},
     {"Load", p_string, o_load, no_move},
