@@ -13,6 +13,7 @@ CellConfig load_cell_config(const std::string& path) {
     c.state_dir = root.get_or<std::string>("state_dir", c.state_dir);
     c.simulated = root.get_or<bool>("simulated", c.simulated);
     c.extruder = drivers::load_extruder_config(root.section("extruder"));
+    c.robot = drivers::abb::load_robot_config(root.section("robot"));
     root.finish();
     return c;
 }

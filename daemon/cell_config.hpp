@@ -2,6 +2,7 @@
 // The cell configuration (cell YAML): what the service needs before it can run. Each module
 // reads its own section; unknown keys and out-of-range values are rejected with the key path.
 
+#include "drivers/abb/cell/robot_config.hpp"
 #include "drivers/extruder/extruder_config.hpp"
 
 #include <string>
@@ -14,6 +15,7 @@ struct CellConfig {
     std::string state_dir = "/var/lib/fibrecelld";  // job folders live here
     bool simulated = true;                          // simulated controller and mock board
     drivers::ExtruderConfig extruder;               // GT2560 link, tools, cutter (marlin-link.md)
+    drivers::abb::RobotCellConfig robot;            // IRB 1200, bed, head (robot-program.md)
 };
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key.

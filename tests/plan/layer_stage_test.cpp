@@ -2,6 +2,7 @@
 // the load, PLA layers, and the plan directory written by `fibrecell plan`.
 
 #include "planner/plan/layer_stage.hpp"
+#include "drivers/abb/rapid/reader.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/mesh/structured_mesh.hpp"
@@ -112,6 +113,24 @@ TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
     EXPECT_GT(report["fibre"]["length_m"].get<double>(), 1.0);
     for (const char* key : {"vector_field", "scalar_field", "extraction", "connection"})
         EXPECT_TRUE(report["timings_s"]["per_layer_mean"][key].is_number()) << key;
+    // The robot's side: RAPID chunks the project's reader accepts, counted in the report.
+    const int modules = report["robot"]["modules"].get<int>();
+    ASSERT_GE(modules, 1);
+    EXPECT_GT(report["robot"]["moves"].get<int>(), 10);
+    EXPECT_GT(report["robot"]["duration_s"].get<double>(), 0.0);
+    EXPECT_TRUE(report["timings_s"]["rapid"].is_number());
+    namespace rapid = fibrecell::drivers::abb::rapid;
+    rapid::ValidateOptions options;
+    options.known_signals = {"goFcEvent", "goFcBarrier",   "giFcRelease",   "diFcPause",
+                             "diFcAbort", "diFcHeartbeat", "doFcHeartbeat", "doFcRunning"};
+    options.external_routines = {"FcMain:FcBarrier"};
+    for (int i = 1; i <= modules; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "FcChunk%04d.mod", i);
+        const auto r = rapid::check_module_file((out / "rapid" / name).string(), options);
+        EXPECT_TRUE(r.ok()) << name << ": "
+                            << (r.diagnostics.empty() ? "" : format(r.diagnostics.front()));
+    }
 }
 
 TEST_F(LayerStageTest, BaselineStrategyProducesRingsAndZigzag) {

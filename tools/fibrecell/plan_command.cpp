@@ -1,5 +1,7 @@
 #include "tools/fibrecell/plan_command.hpp"
 
+#include "daemon/cell_config.hpp"
+#include "daemon/robot_plan.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
@@ -26,6 +28,7 @@ struct PlanArgs {
     std::string out;
     std::string stage = "layers";
     std::string strategy;
+    std::string cell;  // cell YAML; empty: the simulated cell's defaults
     int threads = 0;
 };
 
@@ -68,6 +71,16 @@ void write_layer_outputs(const std::string& out, const planner::JobSpec& job,
     planner::write_preview(out + "/preview", layers.layers, layers.outlines, backgrounds);
 }
 
+void print_robot_summary(const daemon::RobotPlan& plan, const std::string& out) {
+    const auto& s = plan.program.stats;
+    std::printf(
+        "robot      %zu moves, %zu events (%zu barriers), %zu head switches, about %.0f min of "
+        "printing; %zu RAPID modules (%zu lines) in %.3f s\n",
+        s.moves, s.events, s.barriers, s.head_switches, s.duration_s / 60.0, plan.rapid.modules,
+        plan.rapid.lines, plan.seconds);
+    std::printf("wrote      %s/rapid/\n", out.c_str());
+}
+
 void print_layer_summary(const planner::LayerStageResult& layers, const std::string& out) {
     const auto& s = layers.stats;
     std::printf(
@@ -92,6 +105,9 @@ int run_plan(const PlanArgs& args) {
     planner::Stopwatch clock;
     try {
         planner::JobSpec job = planner::load_job_file(args.job);
+        const drivers::abb::RobotCellConfig robot = args.cell.empty()
+                                                        ? drivers::abb::RobotCellConfig{}
+                                                        : daemon::load_cell_config(args.cell).robot;
         if (!args.strategy.empty())
             job.planner.strategy = args.strategy == "field" ? planner::Strategy::field
                                                             : planner::Strategy::contour_zigzag;
@@ -100,6 +116,7 @@ int run_plan(const PlanArgs& args) {
 
         planner::FieldStageResult result;
         std::optional<planner::LayerStageResult> layers;
+        std::optional<daemon::RobotPlan> robot_plan;
         {
             ConsoleProgress progress;
             planner::StepControl control{progress.sink(), nullptr};
@@ -114,12 +131,16 @@ int run_plan(const PlanArgs& args) {
             if (layers) {
                 write_layer_outputs(args.out, job, *layers);
                 planner::add_layer_stage_report(report, *layers);
+                progress.update("robot", 0.0);
+                robot_plan = daemon::plan_robot(job, layers->layers, robot, args.out + "/rapid");
+                daemon::add_robot_report(report, *robot_plan);
             }
             report["timings_s"]["total"] = clock.elapsed();
             planner::write_json_file(args.out + "/report.json", report);
         }
         print_summary(result, args.out);
         if (layers) print_layer_summary(*layers, args.out);
+        if (robot_plan) print_robot_summary(*robot_plan, args.out);
         return 0;
     } catch (const std::exception& e) {
         // ConfigError, InputError, FeaError and the rest all carry a complete one-line message.
@@ -141,6 +162,9 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", args->threads,
                     "worker threads for the layers (default: all cores)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--cell", args->cell,
+                    "cell YAML for the robot program (default: the simulated cell)")
+        ->check(CLI::ExistingFile);
     cmd->add_option("--strategy", args->strategy, "override the job's fibre strategy")
         ->check(CLI::IsMember({"field", "contour-zigzag"}));
     cmd->callback([args, &exit_code] { exit_code = run_plan(*args); });
