@@ -193,7 +193,7 @@ class ChunkWriter {
 
     RapidModule write(int number, int count, std::size_t first, std::size_t end) const {
         RapidModule mod;
-        char digits[8];
+        char digits[16];  // room for any int: GCC checks the format against the type
         std::snprintf(digits, sizeof digits, "%04d", number);
         mod.name = std::string(chunk_prefix) + digits;
         mod.file_name = mod.name + ".mod";
