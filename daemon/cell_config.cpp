@@ -14,6 +14,8 @@ CellConfig load_cell_config(const std::string& path) {
     c.simulated = root.get_or<bool>("simulated", c.simulated);
     c.extruder = drivers::load_extruder_config(root.section("extruder"));
     c.robot = drivers::abb::load_robot_config(root.section("robot"));
+    c.rws = drivers::abb::rws::load_rws_config(root.section("rws"));
+    c.robot_io = drivers::abb::load_robot_io_config(root.section("robot_io"));
     root.finish();
     return c;
 }

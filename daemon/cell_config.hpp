@@ -3,6 +3,8 @@
 // reads its own section; unknown keys and out-of-range values are rejected with the key path.
 
 #include "drivers/abb/cell/robot_config.hpp"
+#include "drivers/abb/modbus/robot_io_config.hpp"
+#include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/extruder/extruder_config.hpp"
 
 #include <string>
@@ -16,6 +18,8 @@ struct CellConfig {
     bool simulated = true;                          // simulated controller and mock board
     drivers::ExtruderConfig extruder;               // GT2560 link, tools, cutter (marlin-link.md)
     drivers::abb::RobotCellConfig robot;            // IRB 1200, bed, head (robot-program.md)
+    drivers::abb::rws::RwsLinkConfig rws;           // the IRC5's Robot Web Services (rws-link.md)
+    drivers::abb::RobotIoConfig robot_io;           // Modbus TCP robot I/O coupler (robot-io.md)
 };
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key.

@@ -663,6 +663,11 @@ std::string MockGt2560::port_path() const {
 
 double MockGt2560::sim_now_s() const { return impl_->now(); }
 
+std::chrono::steady_clock::time_point MockGt2560::wall_at(double sim_s) const {
+    return impl_->t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(sim_s / impl_->o.time_scale));
+}
+
 void MockGt2560::corrupt_line(std::int64_t k) {
     std::lock_guard lock(impl_->mu);
     impl_->corrupt.insert(k);

@@ -61,6 +61,9 @@ class MockGt2560 {
     // The device path for the driver: the symlink when configured, else /dev/pts/N.
     std::string port_path() const;
     double sim_now_s() const;
+    // The steady-clock instant of a simulated time of this board (its logs' t_s), to line its
+    // log up with other simulated devices.
+    std::chrono::steady_clock::time_point wall_at(double sim_s) const;
 
     // Fault injection, keyed by the host's line number K (each fires once).
     void corrupt_line(std::int64_t k);      // one byte flipped: checksum error
