@@ -17,7 +17,9 @@
 //     queues nothing (a controller error, as on a real IRC5).
 //
 // Thread-safety: every public method may be called from any thread. Trigger callbacks run on the
-// motion thread and must not block.
+// motion thread and must not block; they may call the simulator (current() then shows where the
+// trigger fired). A segment is reported done only after the callbacks of the tick that finished
+// it have run; a callback that throws halts the robot with status().error set.
 
 #include "drivers/abb/kinematics/irb1200.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
@@ -54,7 +56,7 @@ struct MotionTrigger {
 };
 
 struct MotionSegment {
-    bool joint = false;  // MoveJ/TriggJ (moved as a straight TCP line, see above)
+    bool joint = false;       // MoveJ/TriggJ (moved as a straight TCP line, see above)
     rapid::Robtarget target;  // TCP in the work object
     rapid::ToolData tool;
     rapid::WobjData wobj;
@@ -66,13 +68,13 @@ struct MotionSegment {
 
 // The robot at one instant. Positions [mm], joints [rad].
 struct TrajectorySample {
-    double t_s = 0;                                // simulated time (SimClock::now_s)
-    SimClock::WallClock::time_point wall;          // the same instant on the steady clock
+    double t_s = 0;                                         // simulated time (SimClock::now_s)
+    SimClock::WallClock::time_point wall;                   // the same instant on the steady clock
     Eigen::Vector3d tcp_base_mm = Eigen::Vector3d::Zero();  // TCP in the base frame
     Eigen::Vector3d tcp_wobj_mm = Eigen::Vector3d::Zero();  // TCP in the segment's work object
-    double path_mm = 0;        // TCP arc length travelled since the simulator started
-    double speed_mm_s = 0;     // TCP speed
-    std::uint64_t segment = 0; // id of the segment being moved along (0: none yet)
+    double path_mm = 0;         // TCP arc length travelled since the simulator started
+    double speed_mm_s = 0;      // TCP speed
+    std::uint64_t segment = 0;  // id of the segment being moved along (0: none yet)
     abb::JointVector joints{};  // linear between the targets' IK solutions [rad]
     std::string source;         // that segment's MotionSegment::source
 };
@@ -80,22 +82,21 @@ struct TrajectorySample {
 struct MotionOptions {
     abb::Irb1200Variant variant = abb::Irb1200Variant::irb1200_7_70;
     abb::JointSolverOptions solver{.cfx = 1};  // margins; the cfx comes from each target
-    double accel_mm_s2 = 1000;       // TCP acceleration and deceleration
-    double tick_s = 0.001;           // simulated step of the motion thread
-    double record_period_s = 0.01;   // trajectory sample period (simulated); 0 = every tick
-    abb::JointVector start_joints{}; // the robot's joints at start-up [rad]
-    std::size_t max_samples = 200'000;  // recorded samples kept until take_trajectory(); past
-                                        // this the oldest are dropped (status().samples_dropped)
+    double accel_mm_s2 = 1000;                 // TCP acceleration and deceleration
+    double tick_s = 0.001;                     // simulated step of the motion thread
+    double record_period_s = 0.01;      // trajectory sample period (simulated); 0 = every tick
+    abb::JointVector start_joints{};    // the robot's joints at start-up [rad]
+    std::size_t max_samples = 200'000;  // kept until take_trajectory(), then oldest dropped
 };
 
 struct MotionStatus {
-    bool moving = false;          // a motion is under way: moving, turning, or about to start
-    bool stopped = false;         // StopMove in effect
+    bool moving = false;   // a motion is under way: moving, turning, or about to start
+    bool stopped = false;  // StopMove in effect
     bool motors_on = true;
     std::size_t pending = 0;      // queued segments not yet finished (the current one included)
     std::uint64_t last_done = 0;  // id of the last segment whose end the robot passed
     std::string error;            // the controller error that stopped motion, if any
-    std::uint64_t samples_dropped = 0;  // trajectory samples lost to MotionOptions::max_samples
+    std::uint64_t samples_dropped = 0;  // past MotionOptions::max_samples
 };
 
 class MotionSimulator {

@@ -1,0 +1,315 @@
+#include "daemon/print/print_session.hpp"
+
+#include "drivers/abb/rapid/reader.hpp"
+#include "drivers/abb/rapid/rapid_writer.hpp"
+
+#include <thread>
+
+namespace fibrecell::daemon::print {
+
+namespace abb = drivers::abb;
+using Clock = std::chrono::steady_clock;
+
+std::string_view to_string(PrintPhase p) {
+    switch (p) {
+        case PrintPhase::idle: return "idle";
+        case PrintPhase::printing: return "printing";
+        case PrintPhase::paused: return "paused";
+        case PrintPhase::completed: return "completed";
+        case PrintPhase::aborted: return "aborted";
+        case PrintPhase::faulted: return "faulted";
+    }
+    return "unknown";
+}
+
+namespace {
+
+bool finished(PrintPhase p) {
+    return p == PrintPhase::completed || p == PrintPhase::aborted || p == PrintPhase::faulted;
+}
+
+// Waits for a board request; a failure names the step.
+void await_board(std::future<drivers::marlin::CommandOutcome> f, std::chrono::milliseconds timeout,
+                 const std::string& step) {
+    if (f.wait_for(timeout) != std::future_status::ready)
+        throw PrintError(step + ": no answer from the extruder board within " +
+                         std::to_string(timeout.count() / 1000) + " s");
+    const auto outcome = f.get();
+    if (!outcome.ok()) throw PrintError(step + ": " + outcome.detail);
+}
+
+}  // namespace
+
+PrintSession::PrintSession(const abb::PrintProgram& program, std::vector<abb::ChunkFile> chunks,
+                           PrintLinks links, PrintOptions options)
+    : program_(program),
+      chunks_(std::move(chunks)),
+      links_(links),
+      options_(std::move(options)),
+      fc_(links.rws) {}
+
+PrintSession::~PrintSession() {
+    std::unique_ptr<sync::SyncEngine> engine;
+    {
+        std::lock_guard lock(mu_);
+        engine = std::move(engine_);
+    }
+    if (engine) engine->stop();
+}
+
+void PrintSession::robot_event(const abb::EventCounterChange& change) {
+    std::lock_guard lock(mu_);
+    if (engine_) engine_->robot_event(change);
+}
+
+void PrintSession::robot_link_state(const abb::RobotIoStateChange& change) {
+    std::lock_guard lock(mu_);
+    if (engine_) engine_->robot_link_state(change);
+}
+
+void PrintSession::board_temperature(const drivers::marlin::TemperatureReport& report) {
+    std::lock_guard lock(mu_);
+    if (engine_) engine_->board_temperature(report);
+}
+
+void PrintSession::on_event_done(std::function<void(const sync::EventDone&)> f) {
+    on_done_ = std::move(f);
+}
+
+// A chunk that does not build would stop RAPID in the middle of the print (FcMain's WaitLoad);
+// the reader finds it before anything moves.
+void PrintSession::check_chunks() const {
+    for (const abb::ChunkFile& c : chunks_) {
+        abb::rapid::ValidateOptions o;
+        o.file_name = c.file_name;
+        o.known_signals = options_.signals;
+        o.external_routines = {std::string(abb::barrier_routine)};
+        o.max_lines = options_.max_chunk_lines;
+        const auto result = abb::rapid::check_module(c.text, o);
+        for (const auto& d : result.diagnostics)
+            if (d.severity == abb::rapid::Severity::error)
+                throw PrintError("pre-flight: " + abb::rapid::format(d));
+        if (!result.module) throw PrintError("pre-flight: " + c.file_name + " cannot be read");
+    }
+}
+
+void PrintSession::start() {
+    check_chunks();
+    if (!links_.robot_io.wait_until_up(options_.link_timeout)) {
+        const auto snap = links_.robot_io.snapshot();
+        throw PrintError("pre-flight: the robot I/O link is not up (" +
+                         std::string(abb::to_string(snap.state)) + ": " +
+                         (snap.fault_reason.empty() ? snap.last_error : snap.fault_reason) + ")");
+    }
+    if (links_.board.state() != drivers::DeviceState::active)
+        throw PrintError("pre-flight: the extruder board is not connected (" +
+                         std::string(drivers::to_string(links_.board.state())) + ")");
+    try {
+        fc_.ensure_running();
+        fc_.upload_chunks(options_.job_dir, chunks_);
+    } catch (const std::exception& e) {
+        throw PrintError(std::string("pre-flight: robot program: ") + e.what());
+    }
+    if (options_.heat_before_start) {
+        // Both targets first, then the waits: the hotends heat together.
+        await_board(links_.board.submit(links_.extruder.prepare(false)), options_.heat_timeout,
+                    "pre-flight: heat-up");
+        await_board(links_.board.submit(links_.extruder.prepare(true)), options_.heat_timeout,
+                    "pre-flight: heat-up");
+    }
+    start_engine(options_.sync.first_event);
+    const int first_chunk = 1;  // resuming inside a job re-enters through the program (issue 7)
+    try {
+        fc_.request_run({.job_dir = options_.job_dir,
+                         .chunk_count = static_cast<int>(chunks_.size()),
+                         .first_chunk = first_chunk,
+                         .heartbeat_timeout_s = options_.heartbeat_timeout_s},
+                        options_.run_request_timeout);
+    } catch (const std::exception& e) {
+        std::unique_ptr<sync::SyncEngine> engine;
+        {
+            std::lock_guard lock(mu_);
+            engine = std::move(engine_);
+        }
+        engine->stop();
+        throw PrintError(std::string("start: ") + e.what());
+    }
+    std::lock_guard lock(mu_);
+    status_.phase = PrintPhase::printing;
+}
+
+void PrintSession::start_engine(std::int64_t first_event) {
+    sync::SyncOptions o = options_.sync;
+    o.first_event = first_event;
+    auto engine = std::make_unique<sync::SyncEngine>(program_, links_.extruder, links_.board,
+                                                     links_.robot_io, o);
+    if (on_done_) engine->on_event_done(on_done_);
+    engine->start();
+    std::unique_ptr<sync::SyncEngine> old;
+    {
+        std::lock_guard lock(mu_);
+        old = std::move(engine_);
+        engine_ = std::move(engine);
+    }
+    if (old) old->stop();
+}
+
+void PrintSession::pause() {
+    std::lock_guard lock(mu_);
+    if (status_.phase != PrintPhase::printing)
+        throw PrintError("pause: the print is " + std::string(to_string(status_.phase)));
+    engine_->pause();
+    status_.phase = PrintPhase::paused;
+}
+
+void PrintSession::resume() {
+    PrintPhase phase;
+    {
+        std::lock_guard lock(mu_);
+        phase = status_.phase;
+    }
+    if (phase == PrintPhase::paused) {
+        std::lock_guard lock(mu_);
+        engine_->resume();
+        status_.phase = PrintPhase::printing;
+        return;
+    }
+    if (phase != PrintPhase::faulted)
+        throw PrintError("resume: the print is " + std::string(to_string(phase)));
+    if (!links_.robot_io.wait_until_up(options_.link_timeout))
+        throw PrintError("resume: the robot I/O link is still down (" +
+                         links_.robot_io.snapshot().fault_reason + ")");
+    if (links_.board.state() != drivers::DeviceState::active)
+        throw PrintError("resume: the extruder board is not connected");
+    abb::FcStatus robot;
+    try {
+        robot = fc_.status();
+    } catch (const std::exception& e) {
+        throw PrintError(std::string("resume: cannot read the robot program: ") + e.what());
+    }
+    if (robot.state != abb::FcState::held && robot.state != abb::FcState::paused &&
+        robot.state != abb::FcState::running)
+        throw PrintError("resume: the robot program is " + std::string(abb::to_string(robot.state)) +
+                         (robot.message.empty() ? "" : " (" + robot.message + ")") +
+                         ": the run cannot be continued");
+    std::int64_t next;
+    bool engine_faulted;
+    {
+        std::lock_guard lock(mu_);
+        const auto s = engine_->status();
+        next = s.last_confirmed + 1;
+        engine_faulted = s.faulted;
+    }
+    if (engine_faulted) start_engine(next);
+    if (robot.state == abb::FcState::held) rearm_after_hold();
+    std::lock_guard lock(mu_);
+    engine_->resume();
+    status_.phase = PrintPhase::printing;
+    status_.reason.clear();
+}
+
+// FcMain takes a resume after a heartbeat loss only from a pause request that rises while the
+// heartbeat is back (FcOnPause arms it, FcOnResume takes it). The link may have written the pause
+// before the heartbeat resumed, so make a fresh rising edge once the heartbeat has run a while.
+void PrintSession::rearm_after_hold() {
+    const auto hb = links_.robot_io.config().heartbeat_period;
+    links_.robot_io.set_pause(false);
+    std::this_thread::sleep_for(3 * hb);
+    links_.robot_io.set_pause(true);
+    std::this_thread::sleep_for(3 * hb);
+}
+
+void PrintSession::abort(std::chrono::milliseconds timeout) {
+    std::unique_ptr<sync::SyncEngine> engine;
+    {
+        std::lock_guard lock(mu_);
+        engine = std::move(engine_);
+    }
+    if (engine) {
+        engine->pause();
+        engine->stop();
+    }
+    links_.board.abort();
+    links_.robot_io.set_abort(true);
+    const auto deadline = Clock::now() + timeout;
+    std::string why = "aborted by the operator";
+    for (;;) {
+        try {
+            const auto s = fc_.status();
+            if (s.state == abb::FcState::aborted || s.state == abb::FcState::idle ||
+                s.state == abb::FcState::completed)
+                break;
+        } catch (const std::exception& e) {
+            why += std::string(" (robot status unreadable: ") + e.what() + ")";
+        }
+        if (Clock::now() > deadline) {
+            why += "; the robot program did not confirm the abort within " +
+                   std::to_string(timeout.count()) + " ms";
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    links_.robot_io.set_abort(false);
+    links_.robot_io.set_pause(false);
+    std::lock_guard lock(mu_);
+    status_.phase = PrintPhase::aborted;
+    status_.reason = why;
+}
+
+void PrintSession::fault(const std::string& reason) {
+    // Robot-side faults leave the engine running: pause it so that no feed goes on. Its own
+    // faults have stopped it already.
+    if (engine_ && !engine_->status().faulted) engine_->pause();
+    status_.phase = PrintPhase::faulted;
+    status_.reason = reason;
+}
+
+PrintStatus PrintSession::poll() {
+    abb::FcStatus robot;
+    std::string robot_error;
+    bool rapid_stopped = false;
+    std::string build_log;
+    try {
+        robot = fc_.status();
+        rapid_stopped = links_.rws.execution_state().state == abb::rws::ExecutionState::stopped;
+        // A chunk that does not build stops RAPID in WaitLoad; the build log says where.
+        if (rapid_stopped)
+            for (const auto& e : links_.rws.build_errors())
+                build_log += (build_log.empty() ? "" : "; ") + abb::rws::format(e);
+    } catch (const std::exception& e) {
+        robot_error = e.what();
+    }
+    std::lock_guard lock(mu_);
+    if (engine_) status_.sync = engine_->status();
+    if (robot_error.empty()) status_.robot = robot;
+    if (status_.phase != PrintPhase::printing && status_.phase != PrintPhase::paused)
+        return status_;
+    if (status_.sync.faulted) {
+        fault(status_.sync.fault_reason);
+    } else if (!robot_error.empty()) {
+        fault("robot controller unreachable: " + robot_error);
+    } else if (rapid_stopped && robot.state != abb::FcState::completed) {
+        fault("RAPID execution stopped on the controller" +
+              (build_log.empty() ? std::string() : ": " + build_log));
+    } else if (robot.state == abb::FcState::completed) {
+        if (status_.sync.finished) status_.phase = PrintPhase::completed;
+    } else if (robot.state == abb::FcState::held) {
+        fault("robot held: " + robot.message);
+    } else if (robot.state != abb::FcState::running && robot.state != abb::FcState::paused) {
+        fault("the robot program stopped the run (" + std::string(abb::to_string(robot.state)) +
+              (robot.message.empty() ? "" : ": " + robot.message) + ")");
+    }
+    return status_;
+}
+
+PrintPhase PrintSession::wait_until_done(std::chrono::milliseconds timeout,
+                                         std::chrono::milliseconds period) {
+    const auto deadline = Clock::now() + timeout;
+    for (;;) {
+        const PrintPhase p = poll().phase;
+        if (finished(p) || Clock::now() > deadline) return p;
+        std::this_thread::sleep_for(period);
+    }
+}
+
+}  // namespace fibrecell::daemon::print

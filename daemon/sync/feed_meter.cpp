@@ -1,0 +1,73 @@
+#include "daemon/sync/feed_meter.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace fibrecell::daemon::sync {
+namespace {
+
+double round_e(double e_mm) { return std::round(e_mm * 1e5) / 1e5; }
+
+}  // namespace
+
+std::vector<MeterPiece> split_feed(double path_mm, double e_mm, double piece_path_mm) {
+    if (!(piece_path_mm > 0)) throw std::invalid_argument("metering: piece length must be positive");
+    std::vector<MeterPiece> pieces;
+    if (!(path_mm > 0) || !(round_e(e_mm) > 0)) return pieces;
+    const auto n = static_cast<std::size_t>(std::ceil(path_mm / piece_path_mm - 1e-9));
+    double e_before = 0;
+    for (std::size_t i = 1; i <= n; ++i) {
+        const double e_after = round_e(e_mm * static_cast<double>(i) / static_cast<double>(n));
+        if (e_after > e_before)
+            pieces.push_back({path_mm * static_cast<double>(i) / static_cast<double>(n),
+                              round_e(e_after - e_before)});
+        e_before = e_after;
+    }
+    return pieces;
+}
+
+FeedMeter::FeedMeter(std::vector<MeterPiece> pieces, MeterPacing pacing,
+                     SteadyClock::time_point robot_start)
+    : pieces_(std::move(pieces)), pacing_(pacing), robot_start_(robot_start) {}
+
+SteadyClock::time_point FeedMeter::due(std::size_t i) const {
+    // Robot time (simulated seconds) at which it is lead_s of path short of the piece's end.
+    const double robot_s = pieces_[i].path_end_mm / pacing_.speed_mm_s - pacing_.lead_s;
+    return robot_start_ + std::chrono::duration_cast<SteadyClock::duration>(
+                              std::chrono::duration<double>(robot_s / pacing_.time_scale));
+}
+
+std::vector<MeterPiece> FeedMeter::take_due(SteadyClock::time_point now) {
+    std::vector<MeterPiece> out;
+    while (!paused() && next_ < pieces_.size() && due(next_) <= now) out.push_back(pieces_[next_++]);
+    return out;
+}
+
+std::optional<SteadyClock::time_point> FeedMeter::next_due() const {
+    if (paused() || next_ >= pieces_.size()) return std::nullopt;
+    return due(next_);
+}
+
+void FeedMeter::pause(SteadyClock::time_point now) {
+    if (!paused_at_) paused_at_ = now;
+}
+
+void FeedMeter::resume(SteadyClock::time_point now) {
+    if (!paused_at_) return;
+    robot_start_ += now - *paused_at_;
+    paused_at_.reset();
+}
+
+double FeedMeter::e_sent_mm() const {
+    const auto end = pieces_.begin() + static_cast<std::ptrdiff_t>(next_);
+    return std::accumulate(pieces_.begin(), end, 0.0,
+                           [](double s, const MeterPiece& p) { return s + p.e_mm; });
+}
+
+double FeedMeter::e_total_mm() const {
+    return std::accumulate(pieces_.begin(), pieces_.end(), 0.0,
+                           [](double s, const MeterPiece& p) { return s + p.e_mm; });
+}
+
+}  // namespace fibrecell::daemon::sync

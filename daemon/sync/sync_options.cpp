@@ -1,0 +1,32 @@
+#include "daemon/sync/sync_options.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace fibrecell::daemon::sync {
+namespace {
+
+void require_positive(double v, const char* field) {
+    if (!(v > 0) || !std::isfinite(v))
+        throw std::invalid_argument(std::string("sync: ") + field + " must be positive, got " +
+                                    std::to_string(v));
+}
+
+}  // namespace
+
+void validate(const SyncOptions& o, std::int64_t events_total) {
+    require_positive(o.pla_line_width_mm, "pla_line_width_mm");
+    require_positive(o.pla_layer_height_mm, "pla_layer_height_mm");
+    require_positive(o.temp_window_c, "temp_window_c");
+    require_positive(o.fibre_piece_mm, "fibre_piece_mm");
+    require_positive(o.pla_piece_mm, "pla_piece_mm");
+    require_positive(o.time_scale, "time_scale");
+    if (!(o.lead_s >= 0) || !std::isfinite(o.lead_s))
+        throw std::invalid_argument("sync: lead_s must be >= 0, got " + std::to_string(o.lead_s));
+    if (o.first_event < 1 || o.first_event > events_total + 1)
+        throw std::invalid_argument("sync: first_event " + std::to_string(o.first_event) +
+                                    " outside 1.." + std::to_string(events_total + 1));
+}
+
+}  // namespace fibrecell::daemon::sync

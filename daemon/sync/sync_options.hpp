@@ -1,0 +1,26 @@
+#pragma once
+// Settings of one print's sync engine: where the run starts, the job's PLA line (to meter
+// extrude_pla), the head-switch temperature check, and the metering pace.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace fibrecell::daemon::sync {
+
+struct SyncOptions {
+    std::int64_t first_event = 1;      // resume: every event before this one is done
+    double pla_line_width_mm = 0.8;    // job process.pla.line_width_mm
+    double pla_layer_height_mm = 0.8;  // job planner.pla_layer_height_mm
+    double temp_window_c = 5;          // head switch: M109 unless the hotend reads this close
+    double fibre_piece_mm = 1;         // path covered by one metered fibre G1 E
+    double pla_piece_mm = 2;           // path covered by one metered PLA G1 E
+    double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
+    double time_scale = 1;             // simulated seconds per real second (simulated cell)
+    std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
+};
+
+// Throws std::invalid_argument naming the field: non-positive sizes, speeds or windows,
+// a negative lead, first_event outside 1..events_total + 1.
+void validate(const SyncOptions& options, std::int64_t events_total);
+
+}  // namespace fibrecell::daemon::sync

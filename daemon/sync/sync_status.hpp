@@ -1,0 +1,72 @@
+#pragma once
+// What the sync engine tells the service: the observers' payloads and status() with its
+// statistics. Sequence numbers are full event numbers (1-based, not wrapped).
+
+#include "daemon/sync/latency_stats.hpp"
+#include "drivers/abb/program/print_program.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fibrecell::daemon::sync {
+
+// An event whose board commands were all acknowledged (the service journals it).
+struct EventDone {
+    std::int64_t sequence = 0;
+    drivers::abb::EventKind kind = drivers::abb::EventKind::layer_end;
+    int layer = -1;
+    int path = -1;
+    bool released = false;  // a barrier whose release was written (false: held by a pause)
+};
+
+// After each layer_end: how far the print is.
+struct SyncProgress {
+    int layer = -1;                   // the layer just finished (ToolpathLayer::index)
+    std::int64_t events_done = 0;     // the last confirmed sequence
+    std::int64_t events_total = 0;
+};
+
+// The path being metered, if any.
+struct MeteringStatus {
+    bool active = false;
+    std::int64_t sequence = 0;  // the fibre_start or extrude_on event that started it
+    std::size_t pieces_sent = 0, pieces_total = 0;
+    double e_sent_mm = 0, e_total_mm = 0;
+};
+
+struct SyncStats {
+    std::uint64_t events_done = 0;
+    std::uint64_t gaps = 0;           // counter jumps of more than one event
+    std::uint64_t events_caught_up = 0;  // events processed because of a gap
+    std::uint64_t duplicates = 0;     // counter values already seen
+    std::uint64_t counter_resets = 0; // 0 from the robot's run request before any event
+    std::uint64_t heat_waits = 0;     // M109 sent at a head switch
+    std::uint64_t paths_completed = 0;  // path_end events
+    std::uint64_t pieces_sent = 0;    // metering pieces over all paths
+    // Metered feed still unsent when the cut came (fibre) or extrude_off came (PLA): dropped.
+    std::uint64_t feed_left_at_cut = 0;
+    double feed_left_at_cut_mm = 0;
+    std::uint64_t extrusion_left_at_off = 0;
+    double extrusion_left_at_off_mm = 0;
+    std::vector<KindTiming> timing;   // per event kind with board commands
+};
+
+struct SyncStatus {
+    bool running = false;                  // started and not stopped
+    std::int64_t last_received = 0;        // the latest event taken from the robot's counter
+    std::int64_t last_confirmed = 0;       // the latest event done (resume after it)
+    std::int64_t pending = 0;              // received, not confirmed yet
+    std::int64_t events_total = 0;
+    bool finished = false;                 // the program's last event is confirmed
+    bool paused = false;
+    std::optional<std::int64_t> held_barrier;  // a barrier done but held by the pause
+    bool faulted = false;
+    std::string fault_reason;
+    std::optional<double> pla_hotend_c, ccf_hotend_c;  // latest board reports
+    MeteringStatus metering;
+    SyncStats stats;
+};
+
+}  // namespace fibrecell::daemon::sync
