@@ -4,7 +4,8 @@
 
 namespace fibrecell::daemon {
 
-CellConfig load_cell_config(const std::string& path) {
+CellConfig load_cell_config(const std::string& path,
+                            const std::function<void(config::Section& root)>& service) {
     auto root = config::Section::load_file(path);
     CellConfig c;
     c.name = root.get_or<std::string>("name", c.name);
@@ -16,6 +17,12 @@ CellConfig load_cell_config(const std::string& path) {
     c.robot = drivers::abb::load_robot_config(root.section("robot"));
     c.rws = drivers::abb::rws::load_rws_config(root.section("rws"));
     c.robot_io = drivers::abb::load_robot_io_config(root.section("robot_io"));
+    c.simulation = load_simulation_config(root.section("simulation"));
+    if (service) {
+        service(root);
+    } else {
+        for (const char* key : service_sections) root.node(key);
+    }
     root.finish();
     return c;
 }

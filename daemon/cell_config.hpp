@@ -6,7 +6,11 @@
 #include "drivers/abb/modbus/robot_io_config.hpp"
 #include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/extruder/extruder_config.hpp"
+#include "daemon/simulation_config.hpp"
 
+#include "config/yaml_section.hpp"
+
+#include <functional>
 #include <string>
 
 namespace fibrecell::daemon {
@@ -20,9 +24,16 @@ struct CellConfig {
     drivers::abb::RobotCellConfig robot;            // IRB 1200, bed, head (robot-program.md)
     drivers::abb::rws::RwsLinkConfig rws;           // the IRC5's Robot Web Services (rws-link.md)
     drivers::abb::RobotIoConfig robot_io;           // Modbus TCP robot I/O coupler (robot-io.md)
+    SimulationConfig simulation;                    // the simulated cell (simulated: true)
 };
 
-// Loads and validates a cell YAML file; throws config::ConfigError naming the key.
-CellConfig load_cell_config(const std::string& path);
+// The sections only the service reads (api:, jobs:, print:); other readers of a cell YAML
+// (`fibrecell plan --cell`) pass over them.
+inline constexpr const char* service_sections[] = {"api", "jobs", "print"};
+
+// Loads and validates a cell YAML file; throws config::ConfigError naming the key. `service`
+// reads the service's own sections from the root (fibrecelld); without it they are skipped.
+CellConfig load_cell_config(const std::string& path,
+                            const std::function<void(config::Section& root)>& service = {});
 
 }  // namespace fibrecell::daemon

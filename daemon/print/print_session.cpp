@@ -117,6 +117,9 @@ void PrintSession::start() {
         await_board(links_.board.submit(links_.extruder.prepare(true)), options_.heat_timeout,
                     "pre-flight: heat-up");
     }
+    if (options_.resume_tool)
+        await_board(links_.board.submit(links_.extruder.select(*options_.resume_tool)),
+                    options_.heat_timeout, "re-entry: tool select");
     start_engine(options_.sync.first_event);
     const int first_chunk = 1;  // resuming inside a job re-enters through the program (issue 7)
     try {
@@ -138,12 +141,15 @@ void PrintSession::start() {
     status_.phase = PrintPhase::printing;
 }
 
-void PrintSession::start_engine(std::int64_t first_event) {
+void PrintSession::start_engine(std::int64_t first_event,
+                                std::optional<sync::ResumeFeed> resume_feed, bool paused) {
     sync::SyncOptions o = options_.sync;
     o.first_event = first_event;
+    o.resume_feed = resume_feed;
     auto engine = std::make_unique<sync::SyncEngine>(program_, links_.extruder, links_.board,
                                                      links_.robot_io, o);
     if (on_done_) engine->on_event_done(on_done_);
+    if (paused) engine->pause();  // handled right after the engine's start
     engine->start();
     std::unique_ptr<sync::SyncEngine> old;
     {
@@ -192,15 +198,15 @@ void PrintSession::resume() {
         throw PrintError("resume: the robot program is " + std::string(abb::to_string(robot.state)) +
                          (robot.message.empty() ? "" : " (" + robot.message + ")") +
                          ": the run cannot be continued");
-    std::int64_t next;
-    bool engine_faulted;
-    {
-        std::lock_guard lock(mu_);
-        const auto s = engine_->status();
-        next = s.last_confirmed + 1;
-        engine_faulted = s.faulted;
+    const sync::SyncStatus s = settled_engine_status();
+    if (s.faulted) {
+        // A new engine after the last confirmed event, first metering the rest of a path the
+        // fault interrupted; paused until the robot is re-armed, so the metering starts with it.
+        std::optional<sync::ResumeFeed> feed;
+        if (s.metering.sequence > 0 && s.metering.sequence <= s.last_confirmed)
+            feed = sync::ResumeFeed{s.metering.sequence, s.metering.e_fed_mm};
+        start_engine(s.last_confirmed + 1, feed, true);
     }
-    if (engine_faulted) start_engine(next);
     if (robot.state == abb::FcState::held) rearm_after_hold();
     std::lock_guard lock(mu_);
     engine_->resume();
@@ -211,6 +217,22 @@ void PrintSession::resume() {
 // FcMain takes a resume after a heartbeat loss only from a pause request that rises while the
 // heartbeat is back (FcOnPause arms it, FcOnResume takes it). The link may have written the pause
 // before the heartbeat resumed, so make a fresh rising edge once the heartbeat has run a while.
+// The engine's status once the board has answered every metering piece sent before a fault
+// (the aborted ones answer at once; at most a second for the ones the firmware runs out).
+sync::SyncStatus PrintSession::settled_engine_status() const {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    for (;;) {
+        sync::SyncStatus s;
+        {
+            std::lock_guard lock(mu_);
+            s = engine_->status();
+        }
+        if (s.metering.pieces_unanswered == 0 || std::chrono::steady_clock::now() > deadline)
+            return s;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+}
+
 void PrintSession::rearm_after_hold() {
     const auto hb = links_.robot_io.config().heartbeat_period;
     links_.robot_io.set_pause(false);

@@ -30,6 +30,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -57,6 +58,9 @@ struct PrintOptions {
     std::vector<std::string> signals = drivers::abb::RobotSignals{}.all();
     std::size_t max_chunk_lines = 5000;
     sync::SyncOptions sync;                 // first_event > 1 resumes a print
+    // Resuming at a re-entry point: the tool the re-entered unit prints with, selected after the
+    // heat-up (the board may have been reset since; its own head switch is behind the re-entry).
+    std::optional<drivers::Head> resume_tool;
 };
 
 enum class PrintPhase { idle, printing, paused, completed, aborted, faulted };
@@ -107,7 +111,9 @@ class PrintSession {
 
   private:
     void check_chunks() const;
-    void start_engine(std::int64_t first_event);
+    void start_engine(std::int64_t first_event, std::optional<sync::ResumeFeed> resume_feed = {},
+                      bool paused = false);
+    sync::SyncStatus settled_engine_status() const;
     void fault(const std::string& reason);
     void rearm_after_hold();
 

@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace fibrecell::daemon::sync {
@@ -57,6 +58,22 @@ void EventProcessor::begin() {
     send(dev_.extruder.prepare(false));
     spdlog::info("sync.started first_event={} events={}", options_.first_event,
                  dev_.program.events.size());
+    if (const auto& r = options_.resume_feed) {
+        // The path a fault interrupted: the robot goes on from about where the fed feed ends.
+        const ProgramEvent& e = event(r->sequence);
+        if (e.kind != EventKind::fibre_start && e.kind != EventKind::extrude_on)
+            return fault("resume: " + describe(e) + " does not start a metered path");
+        const auto now = SteadyClock::now();
+        start_metering(e, now);
+        try {
+            metering_->meter.skip_fed(r->e_fed_mm, now);
+        } catch (const std::invalid_argument& x) {
+            return fault("resume: " + describe(e) + ": " + x.what());
+        }
+        metering_->e_fed_mm = r->e_fed_mm;
+        spdlog::info("sync.resume_feed {} fed={:.5f} of {:.5f} mm", describe(e), r->e_fed_mm,
+                     metering_->meter.e_total_mm());
+    }
 }
 
 // --- Robot side ---------------------------------------------------------------------------------
@@ -94,6 +111,14 @@ void EventProcessor::process(std::int64_t sequence, const EventCounterChange& ch
     if (unreleased_barrier_)
         return fault("robot reported " + describe(e) + " before barrier " +
                      std::to_string(*unreleased_barrier_) + " was released");
+    if (std::binary_search(options_.skip_events.begin(), options_.skip_events.end(), sequence)) {
+        // Done before an interruption: confirmed (and released) without a board command.
+        ++stats_.events_skipped;
+        if (e.barrier) unreleased_barrier_ = sequence;
+        unconfirmed_.push_back({sequence, last_ticket_});
+        confirm_ready();
+        return;
+    }
     const std::uint64_t ticket = send_for_event(e, change, commands_for(e));
     if (e.kind == EventKind::extrude_on) start_metering(e, change.first_read);
     if (e.barrier) unreleased_barrier_ = sequence;
@@ -174,6 +199,7 @@ std::uint64_t EventProcessor::send_for_event(const ProgramEvent& e, const EventC
 
 void EventProcessor::board_reply(std::uint64_t ticket, const CommandOutcome& outcome,
                                  SteadyClock::time_point at) {
+    piece_answered(ticket, outcome);  // also after a fault: what the board took is fed
     if (faulted_) return;
     if (!outcome.ok()) {
         // A request sent after the link failed only says "not active": name the link's cause.
@@ -242,13 +268,23 @@ void EventProcessor::meter(SteadyClock::time_point now) {
     const ProgramEvent& e = *metering_->event;
     drivers::ExtruderController& x = dev_.extruder;
     for (const MeterPiece& p : metering_->meter.take_due(now)) {
-        if (e.kind == EventKind::fibre_start)
-            send(x.feed_fibre(p.e_mm, e.speed_mm_s));
-        else  // the path share that extrude_pla turns back into exactly p.e_mm
-            send(x.extrude_pla(p.e_mm / metering_->e_per_path_mm, e.speed_mm_s,
-                               options_.pla_line_width_mm, options_.pla_layer_height_mm));
+        const std::uint64_t ticket =
+            e.kind == EventKind::fibre_start
+                ? send(x.feed_fibre(p.e_mm, e.speed_mm_s))
+                // the path share that extrude_pla turns back into exactly p.e_mm
+                : send(x.extrude_pla(p.e_mm / metering_->e_per_path_mm, e.speed_mm_s,
+                                     options_.pla_line_width_mm, options_.pla_layer_height_mm));
+        metering_->in_flight[ticket] = p.e_mm;
         ++stats_.pieces_sent;
     }
+}
+
+void EventProcessor::piece_answered(std::uint64_t ticket, const CommandOutcome& outcome) {
+    if (!metering_) return;
+    const auto piece = metering_->in_flight.find(ticket);
+    if (piece == metering_->in_flight.end()) return;
+    if (outcome.ok()) metering_->e_fed_mm += piece->second;
+    metering_->in_flight.erase(piece);
 }
 
 // Drops what was not sent yet, counted against the path kind it belonged to.
@@ -285,7 +321,7 @@ void EventProcessor::fault(const std::string& reason) {
     if (faulted_) return;
     faulted_ = true;
     fault_reason_ = reason;
-    metering_.reset();
+    // Metering stops; the path stays for status(): its fed amount is where a resume goes on.
     spdlog::error("sync.fault {} last_confirmed={}", reason, last_confirmed_);
     dev_.board.abort();
     dev_.robot.set_pause(true);
@@ -320,8 +356,8 @@ SyncStatus EventProcessor::status() const {
     s.ccf_hotend_c = ccf_hotend_c_;
     if (metering_) {
         const FeedMeter& m = metering_->meter;
-        s.metering = {true, metering_->event->sequence, m.sent(), m.total(), m.e_sent_mm(),
-                      m.e_total_mm()};
+        s.metering = {!faulted_,   metering_->event->sequence, m.sent(), m.total(), m.e_sent_mm(),
+                      m.e_total_mm(), metering_->e_fed_mm, metering_->in_flight.size()};
     }
     s.stats = stats_;
     return s;

@@ -80,6 +80,8 @@ class EventProcessor {
         const drivers::abb::ProgramEvent* event;
         FeedMeter meter;
         double e_per_path_mm;  // 1 for fibre; the PLA line's ratio
+        std::map<std::uint64_t, double> in_flight;  // piece tickets -> E, until answered
+        double e_fed_mm = 0;                        // pieces answered ok
     };
 
     const drivers::abb::ProgramEvent& event(std::int64_t sequence) const;
@@ -95,6 +97,7 @@ class EventProcessor {
     void release(std::int64_t sequence);
     void start_metering(const drivers::abb::ProgramEvent& e, SteadyClock::time_point robot_start);
     void stop_metering();
+    void piece_answered(std::uint64_t ticket, const drivers::marlin::CommandOutcome& outcome);
     std::string where() const;
 
     SyncDevices dev_;
@@ -111,7 +114,7 @@ class EventProcessor {
     std::uint64_t last_ticket_ = 0, acked_ticket_ = 0;
     std::optional<std::int64_t> unreleased_barrier_;  // received, release not written yet
     std::optional<std::int64_t> held_barrier_;        // confirmed while paused
-    std::optional<MeteredPath> metering_;
+    std::optional<MeteredPath> metering_;  // kept (stopped) when a fault interrupts it
     bool paused_ = false;
     bool faulted_ = false;
     std::string fault_reason_;

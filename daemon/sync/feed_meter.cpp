@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace fibrecell::daemon::sync {
 namespace {
@@ -36,6 +37,19 @@ SteadyClock::time_point FeedMeter::due(std::size_t i) const {
     const double robot_s = pieces_[i].path_end_mm / pacing_.speed_mm_s - pacing_.lead_s;
     return robot_start_ + std::chrono::duration_cast<SteadyClock::duration>(
                               std::chrono::duration<double>(robot_s / pacing_.time_scale));
+}
+
+void FeedMeter::skip_fed(double e_mm, SteadyClock::time_point now) {
+    double fed = 0;
+    std::size_t k = 0;
+    while (k < pieces_.size() && fed + pieces_[k].e_mm <= e_mm + 1e-6) fed += pieces_[k++].e_mm;
+    if (std::abs(fed - e_mm) > 1e-6)
+        throw std::invalid_argument("metering: " + std::to_string(e_mm) +
+                                    " mm is not a whole number of the path's pieces");
+    next_ = k;
+    const double at_mm = k == 0 ? 0 : pieces_[k - 1].path_end_mm;
+    robot_start_ = now - std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(
+                             at_mm / pacing_.speed_mm_s / pacing_.time_scale));
 }
 
 std::vector<MeterPiece> FeedMeter::take_due(SteadyClock::time_point now) {

@@ -37,6 +37,11 @@ class FeedMeter {
     // (real time scaled by time_scale) except while paused.
     FeedMeter(std::vector<MeterPiece> pieces, MeterPacing pacing, SteadyClock::time_point robot_start);
 
+    // Resuming a path: the leading pieces that add up to `e_mm` (what the board already took)
+    // count as sent, and the robot is taken to be at the end of the last of them at `now`.
+    // Throws std::invalid_argument when `e_mm` is not a sum of leading pieces.
+    void skip_fed(double e_mm, SteadyClock::time_point now);
+
     // The pieces due at `now`, in order; each is handed out once.
     std::vector<MeterPiece> take_due(SteadyClock::time_point now);
     // When the next piece falls due; empty when all were handed out or while paused.

@@ -1,5 +1,6 @@
 #include "daemon/sync/sync_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -27,6 +28,20 @@ void validate(const SyncOptions& o, std::int64_t events_total) {
     if (o.first_event < 1 || o.first_event > events_total + 1)
         throw std::invalid_argument("sync: first_event " + std::to_string(o.first_event) +
                                     " outside 1.." + std::to_string(events_total + 1));
+    if (!std::is_sorted(o.skip_events.begin(), o.skip_events.end()) ||
+        (!o.skip_events.empty() &&
+         (o.skip_events.front() < o.first_event || o.skip_events.back() > events_total)))
+        throw std::invalid_argument("sync: skip_events must be sorted events from first_event on");
+    if (o.resume_feed) {
+        const ResumeFeed& r = *o.resume_feed;
+        if (r.sequence < 1 || r.sequence >= o.first_event)
+            throw std::invalid_argument("sync: resume_feed event " + std::to_string(r.sequence) +
+                                        " is not before first_event " +
+                                        std::to_string(o.first_event));
+        if (!(r.e_fed_mm >= 0) || !std::isfinite(r.e_fed_mm))
+            throw std::invalid_argument("sync: resume_feed e_fed_mm must be >= 0, got " +
+                                        std::to_string(r.e_fed_mm));
+    }
 }
 
 }  // namespace fibrecell::daemon::sync

@@ -4,11 +4,23 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 namespace fibrecell::daemon::sync {
 
+// A path whose metering a fault interrupted: the new engine meters the rest of it first.
+struct ResumeFeed {
+    std::int64_t sequence = 0;  // its fibre_start or extrude_on event (before first_event)
+    double e_fed_mm = 0;        // feed the board took before the fault (MeteringStatus::e_fed_mm)
+};
+
 struct SyncOptions {
     std::int64_t first_event = 1;      // resume: every event before this one is done
+    std::optional<ResumeFeed> resume_feed;
+    // Resume: events at or after first_event whose work was done before an interruption (the PLA
+    // paths of a re-entered layer): the robot passes them again, the board gets nothing.
+    std::vector<std::int64_t> skip_events;
     double pla_line_width_mm = 0.8;    // job process.pla.line_width_mm
     double pla_layer_height_mm = 0.8;  // job planner.pla_layer_height_mm
     double temp_window_c = 5;          // head switch: M109 unless the hotend reads this close
@@ -20,7 +32,8 @@ struct SyncOptions {
 };
 
 // Throws std::invalid_argument naming the field: non-positive sizes, speeds or windows,
-// a negative lead, first_event outside 1..events_total + 1.
+// a negative lead, first_event outside 1..events_total + 1, a resume_feed that does not name a
+// fibre_start or extrude_on event before first_event or feeds a negative amount.
 void validate(const SyncOptions& options, std::int64_t events_total);
 
 }  // namespace fibrecell::daemon::sync

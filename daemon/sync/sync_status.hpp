@@ -28,12 +28,15 @@ struct SyncProgress {
     std::int64_t events_total = 0;
 };
 
-// The path being metered, if any.
+// The path being metered, if any; after a fault, the path whose metering it interrupted
+// (active false): e_fed_mm is what a new engine continues after (SyncOptions::resume_feed).
 struct MeteringStatus {
     bool active = false;
     std::int64_t sequence = 0;  // the fibre_start or extrude_on event that started it
     std::size_t pieces_sent = 0, pieces_total = 0;
     double e_sent_mm = 0, e_total_mm = 0;
+    double e_fed_mm = 0;  // pieces the board took (answered ok; an aborted one was never fed)
+    std::size_t pieces_unanswered = 0;  // sent, reply not in yet (e_fed_mm may still grow)
 };
 
 struct SyncStats {
@@ -41,6 +44,7 @@ struct SyncStats {
     std::uint64_t gaps = 0;           // counter jumps of more than one event
     std::uint64_t events_caught_up = 0;  // events processed because of a gap
     std::uint64_t duplicates = 0;     // counter values already seen
+    std::uint64_t events_skipped = 0;  // SyncOptions::skip_events passed without commands
     std::uint64_t counter_resets = 0; // 0 from the robot's run request before any event
     std::uint64_t heat_waits = 0;     // M109 sent at a head switch
     std::uint64_t paths_completed = 0;  // path_end events

@@ -471,3 +471,28 @@ TEST_F(MotionSimulatorTest, LinearMoveFromTheAllZeroStartJointsIsAccepted) {
     EXPECT_NEAR((sim.current().tcp_wobj_mm - start_mm).norm(), 0, 1e-9);
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(sim.current().joints[i], home.joints[i], 1e-9);
 }
+
+TEST_F(MotionSimulatorTest, CatchingUpWithAFastClockStillFiresTriggersInPlace) {
+    // At 1000x a 1 ms tick is 1 us of real time, less than one pass of the motion thread: it
+    // falls behind and catches up in steps larger than a tick, stopping at each trigger so that
+    // the trigger still sees the robot at its position. (How well it keeps pace is a figure of
+    // sync_bench, not asserted here; the elapsed ratio is recorded.)
+    SimClock fast{1000};
+    FiringLog log;
+    MotionSimulator sim(fast, options());
+    MotionSegment line = move_to(along_x(160), true, "long line");
+    line.triggers = {log.trigger(sim, "at 40", 40, true), log.trigger(sim, "at 120", 120, true)};
+    sim.queue(std::move(line));
+    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    const double seen_s = fast.now_s();
+    const auto trajectory = sim.take_trajectory();
+    ASSERT_FALSE(trajectory.empty());
+    EXPECT_NEAR(trajectory.back().t_s - trajectory.front().t_s, 160 / v + v / accel, 2 * tick);
+    // How far behind the clock the robot finished (simulated s), as seen by this thread.
+    RecordProperty("finish_lag_s", std::to_string(seen_s - trajectory.back().t_s));
+    EXPECT_NEAR(sim.current().path_mm, 160, 1e-9);
+    EXPECT_GE(log.path_of("at 40"), 40 - 1e-6);
+    EXPECT_LE(log.path_of("at 40"), 40 + trigger_tolerance_mm);
+    EXPECT_GE(log.path_of("at 120"), 120 - 1e-6);
+    EXPECT_LE(log.path_of("at 120"), 120 + trigger_tolerance_mm);
+}

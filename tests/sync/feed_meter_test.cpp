@@ -100,3 +100,27 @@ TEST(FeedMeter, PauseFreezesTheRobotAndResumeContinuesWhereItStopped) {
     EXPECT_DOUBLE_EQ(rest.front().path_end_mm, 3.0);  // nothing lost, nothing repeated
     EXPECT_DOUBLE_EQ(m.e_sent_mm(), 10.0);
 }
+
+TEST(FeedMeter, ResumingSkipsTheFedPiecesAndPacesFromTheirEnd) {
+    const auto t0 = SteadyClock::now();
+    FeedMeter m = ten_pieces(t0, 0.1);
+    const auto resumed_at = t0 + 10s;  // long after the original start: only the skip counts
+    m.skip_fed(4, resumed_at);
+    EXPECT_EQ(m.sent(), 4u);
+    EXPECT_DOUBLE_EQ(m.e_left_mm(), 6);
+    // The robot is at 4 mm at resumed_at: piece 5 (ends at 5 mm) is due 0.2 - 0.1 s later.
+    ASSERT_TRUE(m.next_due());
+    EXPECT_NEAR(ms_after(resumed_at, *m.next_due()), 100, 1e-3);
+    const auto due = m.take_due(resumed_at + 100ms);
+    ASSERT_EQ(due.size(), 1u);
+    EXPECT_DOUBLE_EQ(due[0].path_end_mm, 5);
+}
+
+TEST(FeedMeter, ResumingAfterAnAmountThatIsNotWholePiecesIsRefused) {
+    FeedMeter m = ten_pieces(SteadyClock::now(), 0.1);
+    EXPECT_THROW(m.skip_fed(2.5, SteadyClock::now()), std::invalid_argument);
+    EXPECT_THROW(m.skip_fed(11, SteadyClock::now()), std::invalid_argument);
+    FeedMeter nothing_fed = ten_pieces(SteadyClock::now(), 0.1);
+    nothing_fed.skip_fed(0, SteadyClock::now());
+    EXPECT_EQ(nothing_fed.sent(), 0u);
+}

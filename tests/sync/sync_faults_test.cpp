@@ -70,3 +70,78 @@ TEST_F(SyncFaultTest, TheRobotIoConnectionLostIsAFault) {
     expect_one_fault_containing("robot I/O: modbus 127.0.0.1:");
     EXPECT_EQ(engine_->status().last_confirmed, 1);
 }
+
+TEST_F(SyncFaultTest, ANewEngineResumesAnInterruptedFibreFeedWithNothingLostOrRepeated) {
+    constexpr int fibre_start = 6, cut = 7, layer1_end = 9;
+    boot();
+    start_engine();
+    for (int n = 1; n < fibre_start; ++n) {
+        robot_at(n);
+        if (n == 2) {  // let the PLA metering finish
+            ASSERT_TRUE(eventually([&] { return engine_->status().metering.pieces_sent == 40; }));
+        }
+    }
+    robot_at(fibre_start);
+    ASSERT_TRUE(eventually([&] { return engine_->status().metering.pieces_sent >= 15; }));
+    server_->refuse_connections_for(300ms);
+    server_->drop_connections();
+    expect_one_fault_containing("robot I/O: modbus 127.0.0.1:");
+    ASSERT_TRUE(eventually([&] { return engine_->status().metering.pieces_unanswered == 0; }));
+    const SyncStatus faulted = engine_->status();
+    EXPECT_EQ(faulted.last_confirmed, fibre_start);
+    EXPECT_EQ(faulted.metering.sequence, fibre_start);
+    EXPECT_FALSE(faulted.metering.active);
+    const double fed = faulted.metering.e_fed_mm;
+    EXPECT_GT(fed, 0);
+    EXPECT_LT(fed, 58);
+    // What the engine counts as fed is what the board ran after the threading M400.
+    const auto before = executed_job();
+    const auto threaded = std::find(before.begin(), before.end(), "M400");
+    ASSERT_NE(threaded, before.end());
+    const auto from = static_cast<std::size_t>(threaded - before.begin()) + 1;
+    EXPECT_NEAR(sum_e(before, from, before.size()), fed, 1e-6);
+
+    ASSERT_TRUE(robot_->wait_until_up(5s));
+    board_.on_temperature(nullptr);
+    SyncOptions o;
+    o.time_scale = time_scale;
+    o.first_event = faulted.last_confirmed + 1;
+    o.resume_feed = daemon::sync::ResumeFeed{faulted.metering.sequence, fed};
+    auto resumed = std::make_unique<SyncEngine>(program_, extruder_, board_, *robot_, o);
+    resumed->start();
+    engine_ = std::move(resumed);
+    ASSERT_TRUE(eventually([&] {
+        const SyncStatus s = engine_->status();
+        return s.metering.active && s.metering.sequence == fibre_start &&
+               s.metering.pieces_sent == s.metering.pieces_total && s.metering.pieces_unanswered == 0;
+    }));
+    for (int n = cut; n <= layer1_end; ++n) robot_at(n);
+    confirmed(layer1_end);
+
+    // The fibre's G1 E pieces between the threading M400 and the cut's: each of the path's
+    // pieces exactly once, in order, across both engines.
+    const auto log = executed_job();
+    const auto thread_end = std::find(log.begin(), log.end(), "M400");
+    const auto cut_start = std::find(thread_end + 1, log.end(), "M400");
+    std::vector<std::string> fibre_pieces;
+    for (auto it = thread_end + 1; it != cut_start; ++it)
+        if (it->rfind("G1 E", 0) == 0) fibre_pieces.push_back(*it);
+    EXPECT_EQ(fibre_pieces, metered_pieces(58, 1.0, 5, 1));
+    const SyncStatus s = engine_->status();
+    EXPECT_TRUE(s.finished);
+    EXPECT_EQ(s.stats.feed_left_at_cut, 0u);
+}
+
+TEST_F(SyncFaultTest, AResumeFeedOnAnEventWithoutFeedIsRefused) {
+    boot();
+    SyncOptions o;
+    o.first_event = 7;
+    o.resume_feed = daemon::sync::ResumeFeed{3, 0};  // event 3 is extrude_off
+    EXPECT_THROW(SyncEngine(program_, extruder_, board_, *robot_,
+                            SyncOptions{.first_event = 2, .resume_feed = {{5, 0}}}),
+                 std::invalid_argument);  // not before first_event
+    start_engine(o);
+    ASSERT_TRUE(eventually([&] { return engine_->status().faulted; }));
+    EXPECT_THAT(engine_->status().fault_reason,
+                HasSubstr("resume: event 3 (extrude_off) does not start a metered path"));
+}

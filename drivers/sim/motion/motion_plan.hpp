@@ -55,6 +55,7 @@ class MotionPlan {
     // A motion is planned: the robot moves, turns or is about to start.
     bool active() const { return !profile_.empty(); }
     double time() const { return t_; }  // simulated time of the robot's state [s]
+    std::optional<double> next_trigger_s() const { return triggers_.next_due(); }
     bool stopped() const { return stopped_; }
     std::size_t pending() const;  // queued segments not yet finished, ClearPath's excluded
     std::uint64_t last_done() const { return last_done_; }

@@ -2,6 +2,8 @@
 
 #include "drivers/sim/motion/motion_plan.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -28,6 +30,7 @@ struct MotionSimulator::Impl {
         changed.notify_all();
     }
     void run();
+    double catch_up_target(double tick_t) const;
 
     const SimClock& clock;
     const MotionOptions options;
@@ -44,6 +47,15 @@ struct MotionSimulator::Impl {
     std::thread thread;  // last: starts once the rest is built
 };
 
+double MotionSimulator::Impl::catch_up_target(double tick_t) const {
+    double target = std::max(tick_t, clock.now_s());
+    if (const auto trigger = plan.next_trigger_s(); trigger && *trigger < target) {
+        const double ticks = std::ceil((*trigger - plan.time()) / options.tick_s);
+        target = std::max(tick_t, plan.time() + ticks * options.tick_s);
+    }
+    return target;
+}
+
 // Ticks of options.tick_s on the simulated clock while a motion is planned; parked otherwise.
 void MotionSimulator::Impl::run() {
     std::unique_lock lock(mutex);
@@ -52,12 +64,14 @@ void MotionSimulator::Impl::run() {
             wake.wait(lock, [&] { return quit || plan.active(); });
             continue;
         }
-        // Absolute tick times: a late wake-up is caught up, not carried over.
+        // Absolute tick times. A thread that fell behind the clock (a loaded machine, a high time
+        // scale) catches up in one step instead of replaying every missed tick, but stops at the
+        // first tick of a trigger due on the way: the trigger sees the robot where it fired.
         const double tick_t = plan.time() + options.tick_s;
         lock.unlock();
         clock.sleep_until(tick_t);
         lock.lock();
-        auto due = plan.advance_to(tick_t);
+        auto due = plan.advance_to(catch_up_target(tick_t));
         std::string failure;
         if (!due.empty()) {
             // Outside the lock: a callback may ask where the robot is.

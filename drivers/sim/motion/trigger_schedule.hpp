@@ -25,6 +25,11 @@ class TriggerSchedule {
     // Marks the triggers due by time `t_s` [s] fired and returns their callbacks in path order.
     std::vector<std::function<void()>> take_due(double t_s, std::deque<PathSegment>& queue);
     void clear() { due_.clear(); }
+    // Fire time [s] of the next trigger, if one is scheduled.
+    std::optional<double> next_due() const {
+        if (due_.empty()) return std::nullopt;
+        return due_.front().fire_t_s;
+    }
 
   private:
     struct Due {

@@ -1,0 +1,27 @@
+#include "daemon/simulation_config.hpp"
+
+#include <filesystem>
+
+namespace fibrecell::daemon {
+
+SimulationConfig load_simulation_config(config::Section s) {
+    SimulationConfig c;
+    c.time_scale = s.number("time_scale", c.time_scale, 1, 1000);
+    c.hotend_tau_s = s.number("hotend_tau_s", c.hotend_tau_s, 0, 600, true);
+    c.residency_s = s.number("residency_s", c.residency_s, 0, 60);
+    c.main_module = s.get_or<std::string>("main_module", c.main_module);
+    if (!c.main_module.empty() && !std::filesystem::is_regular_file(c.main_module))
+        s.fail("main_module", "no file " + c.main_module);
+    s.finish();
+    return c;
+}
+
+std::string resolve_main_module(const std::string& configured) {
+    if (!configured.empty()) return configured;
+    for (const char* candidate : {FIBRECELL_INSTALLED_RAPID_DIR "/FcMain.mod",
+                                  FIBRECELL_SOURCE_RAPID_DIR "/FcMain.mod"})
+        if (std::filesystem::is_regular_file(candidate)) return candidate;
+    return FIBRECELL_SOURCE_RAPID_DIR "/FcMain.mod";
+}
+
+}  // namespace fibrecell::daemon

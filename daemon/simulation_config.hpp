@@ -1,0 +1,33 @@
+#pragma once
+// The `simulation:` section of the cell YAML: how the simulated cell behaves when `simulated: true`
+// (docs/service.md). The robot, its RAPID task, the mock board and its heaters all run on one
+// time scale, so a print of an hour shows in minutes; the service's own timing (heartbeats,
+// time-outs) stays in real time.
+//
+//   simulation:
+//     time_scale: 20        # simulated seconds per real second (1..1000)
+//     hotend_tau_s: 8       # the mock hotends' first-order time constant (simulated s)
+//     residency_s: 2        # M109's residency in the temperature window (simulated s)
+//     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
+
+#include "config/yaml_section.hpp"
+
+#include <string>
+
+namespace fibrecell::daemon {
+
+struct SimulationConfig {
+    double time_scale = 20;
+    double hotend_tau_s = 8;
+    double residency_s = 2;
+    std::string main_module;
+};
+
+// Throws config::ConfigError naming the key ("simulation.time_scale").
+SimulationConfig load_simulation_config(config::Section s);
+
+// The FcMain.mod the simulated cell loads: `configured` when set, else the installed copy
+// (<datadir>/fibrecell/rapid/FcMain.mod), else the source tree's drivers/abb/rapid/FcMain.mod.
+std::string resolve_main_module(const std::string& configured);
+
+}  // namespace fibrecell::daemon
