@@ -10,6 +10,7 @@ SimulationConfig load_simulation_config(config::Section s) {
     c.hotend_tau_s = s.number("hotend_tau_s", c.hotend_tau_s, 0, 600, true);
     c.residency_s = s.number("residency_s", c.residency_s, 0, 60);
     c.main_module = s.get_or<std::string>("main_module", c.main_module);
+    c.external_devices = s.choice("devices", "in_process", {"in_process", "external"}) == "external";
     if (!c.main_module.empty() && !std::filesystem::is_regular_file(c.main_module))
         s.fail("main_module", "no file " + c.main_module);
     s.finish();

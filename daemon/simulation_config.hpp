@@ -9,6 +9,8 @@
 //     hotend_tau_s: 8       # the mock hotends' first-order time constant (simulated s)
 //     residency_s: 2        # M109's residency in the temperature window (simulated s)
 //     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
+//     devices: in_process   # or external: fibrecell-simcell and mock-gt2560 run as their own
+//                           # processes at the addresses of the rws:, robot_io: and extruder: sections
 
 #include "config/yaml_section.hpp"
 
@@ -21,6 +23,7 @@ struct SimulationConfig {
     double hotend_tau_s = 8;
     double residency_s = 2;
     std::string main_module;
+    bool external_devices = false;  // devices: external
 };
 
 // Throws config::ConfigError naming the key ("simulation.time_scale").

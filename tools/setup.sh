@@ -2,7 +2,7 @@
 # fibrecell developer entry point: installs missing Debian packages, configures, builds, and
 # runs one of the two jobs a new user needs.
 #
-#   tools/setup.sh demo   build (Release) and run the bundled example
+#   tools/setup.sh demo   build (Release), start the simulated cell's service, print the bundled example
 #   tools/setup.sh test   build (sanitizers on) and run the whole test suite
 #   tools/setup.sh build  only install and build (Release)
 set -euo pipefail
@@ -44,6 +44,28 @@ configure_and_build() {
     cmake --build "$dir" --parallel "$jobs"
 }
 
+# The service in simulation mode on a private socket and state directory, the bundled Loop
+# example submitted, printed with live progress, and a summary at the end (docs/demo.md).
+run_demo() {
+    local demo="$root/out/demo"
+    local sock="$demo/api.sock" log="$demo/fibrecelld.log"
+    rm -rf "$demo"
+    mkdir -p "$demo"
+    "$release_dir/daemon/fibrecelld" --config "$root/config/cell-demo.yaml" \
+        --state-dir "$demo/state" --socket "$sock" >"$log" 2>&1 &
+    local pid=$!
+    trap 'kill "$pid" 2>/dev/null; wait "$pid" 2>/dev/null' EXIT
+    for _ in $(seq 100); do
+        [ -S "$sock" ] && break
+        kill -0 "$pid" 2>/dev/null || { cat "$log" >&2; echo "demo: fibrecelld did not start" >&2; exit 1; }
+        sleep 0.1
+    done
+    echo "demo: fibrecelld (simulated cell) is up on $sock; log: $log"
+    export FIBRECELL_SOCKET="$sock"
+    "$release_dir/tools/fibrecell" submit "$root/examples/loop/loop.job.yaml" --start --watch
+    "$release_dir/tools/fibrecell" status
+}
+
 release_dir="$root/build/release"
 test_dir="$root/build/test"
 
@@ -55,8 +77,7 @@ case "${1:-demo}" in
     demo)
         install_missing
         configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
-        out="$root/out/loop"
-        "$release_dir/tools/fibrecell" plan "$root/examples/loop/loop.job.yaml" --out "$out"
+        run_demo
         ;;
     test)
         install_missing

@@ -106,6 +106,8 @@ void PrintSession::start() {
                          std::string(drivers::to_string(links_.board.state())) + ")");
     try {
         fc_.ensure_running();
+        wait_for_robot_heartbeat();
+        end_previous_run();
         fc_.upload_chunks(options_.job_dir, chunks_);
     } catch (const std::exception& e) {
         throw PrintError(std::string("pre-flight: robot program: ") + e.what());
@@ -116,6 +118,9 @@ void PrintSession::start() {
                     "pre-flight: heat-up");
         await_board(links_.board.submit(links_.extruder.prepare(true)), options_.heat_timeout,
                     "pre-flight: heat-up");
+        // M109 returned: both are at temperature, whether or not a report came meanwhile.
+        options_.sync.pla_hotend_c = links_.extruder.config().pla_temp_c;
+        options_.sync.ccf_hotend_c = links_.extruder.config().ccf_temp_c;
     }
     if (options_.resume_tool)
         await_board(links_.board.submit(links_.extruder.select(*options_.resume_tool)),
@@ -233,12 +238,60 @@ sync::SyncStatus PrintSession::settled_engine_status() const {
     }
 }
 
-void PrintSession::rearm_after_hold() {
-    const auto hb = links_.robot_io.config().heartbeat_period;
+// FcMain toggles its heartbeat once its cycle is set up; a run request before that is dropped.
+void PrintSession::wait_for_robot_heartbeat() {
+    const auto deadline = Clock::now() + options_.run_request_timeout;
+    while (!links_.robot_io.snapshot().robot_heartbeat_ok) {
+        if (Clock::now() > deadline)
+            throw PrintError("pre-flight: no heartbeat from the robot program within " +
+                             std::to_string(options_.run_request_timeout.count()) +
+                             " ms (is FcMain running?)");
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
+// A run left over from before a service restart (FcMain holding the robot on the lost heartbeat,
+// or still running) is aborted so that the new run can start; the robot stands meanwhile.
+void PrintSession::end_previous_run() {
+    const abb::FcStatus s = fc_.status();
+    if (s.state != abb::FcState::running && s.state != abb::FcState::paused &&
+        s.state != abb::FcState::held)
+        return;
+    links_.robot_io.set_abort(true);
+    const auto deadline = Clock::now() + options_.run_request_timeout;
+    abb::FcState now = s.state;
+    while (Clock::now() < deadline) {
+        now = fc_.status().state;
+        if (now != abb::FcState::running && now != abb::FcState::paused && now != abb::FcState::held) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    links_.robot_io.set_abort(false);
     links_.robot_io.set_pause(false);
-    std::this_thread::sleep_for(3 * hb);
-    links_.robot_io.set_pause(true);
-    std::this_thread::sleep_for(3 * hb);
+    if (now == abb::FcState::running || now == abb::FcState::paused || now == abb::FcState::held)
+        throw PrintError("pre-flight: the robot program's previous run (" +
+                         std::string(abb::to_string(s.state)) + ") did not end on the abort request");
+}
+
+void PrintSession::rearm_after_hold() {
+    // The heartbeat must be back (FcMain arms the resume only then); each attempt is a fresh
+    // rise and drop of the pause request, a few heartbeats apart, until FcMain leaves `held`.
+    const auto hb = links_.robot_io.config().heartbeat_period;
+    const auto deadline = Clock::now() + options_.run_request_timeout;
+    while (!links_.robot_io.snapshot().robot_heartbeat_ok && Clock::now() < deadline)
+        std::this_thread::sleep_for(hb);
+    for (int attempt = 0; attempt < 5; ++attempt) {
+        links_.robot_io.set_pause(false);
+        std::this_thread::sleep_for(3 * hb);
+        links_.robot_io.set_pause(true);
+        std::this_thread::sleep_for(3 * hb);
+        links_.robot_io.set_pause(false);
+        const auto until = Clock::now() + 10 * hb;
+        while (Clock::now() < until) {
+            if (fc_.status().state != abb::FcState::held) return;
+            std::this_thread::sleep_for(hb);
+        }
+    }
+    throw PrintError("resume: the robot program stays held after the heartbeat came back");
 }
 
 void PrintSession::abort(std::chrono::milliseconds timeout) {

@@ -116,6 +116,8 @@ class PrintSession {
     sync::SyncStatus settled_engine_status() const;
     void fault(const std::string& reason);
     void rearm_after_hold();
+    void end_previous_run();
+    void wait_for_robot_heartbeat();
 
     const drivers::abb::PrintProgram& program_;
     std::vector<drivers::abb::ChunkFile> chunks_;

@@ -42,7 +42,9 @@ EventProcessor::EventProcessor(SyncDevices devices, const SyncOptions& options,
       pla_e_per_path_mm_(pla_e_per_path_mm(dev_.extruder.config(), options.pla_line_width_mm,
                                            options.pla_layer_height_mm)),
       counter_(options.first_event - 1),
-      last_confirmed_(options.first_event - 1) {}
+      last_confirmed_(options.first_event - 1),
+      pla_hotend_c_(options.pla_hotend_c),
+      ccf_hotend_c_(options.ccf_hotend_c) {}
 
 const ProgramEvent& EventProcessor::event(std::int64_t sequence) const {
     return dev_.program.events[static_cast<std::size_t>(sequence - 1)];

@@ -29,6 +29,9 @@ struct SyncOptions {
     double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
     double time_scale = 1;             // simulated seconds per real second (simulated cell)
     std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
+    // Hotend readings known at the start (a pre-flight M109 just brought both to temperature),
+    // until the board's own reports come; none: a head switch waits for a report or heats.
+    std::optional<double> pla_hotend_c, ccf_hotend_c;
 };
 
 // Throws std::invalid_argument naming the field: non-positive sizes, speeds or windows,

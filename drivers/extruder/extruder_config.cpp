@@ -35,7 +35,7 @@ ExtruderConfig load_extruder_config(config::Section s) {
         c.pla_temp_c = p.number("temp_c", 200, 0, 280);
         c.filament_diameter_mm = p.number("filament_diameter_mm", 1.75, 0.5, 3.5);
         c.retract_mm = p.number("retract_mm", 1.0, 0, 20);
-        c.retract_speed_mm_s = p.number("retract_speed_mm_s", 25, 0, 150, true);
+        c.retract_speed_mm_s = p.number("retract_speed_mm_s", 40, 0, 150, true);
         p.finish();
     }
     {

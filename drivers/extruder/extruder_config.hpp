@@ -32,7 +32,7 @@ struct ExtruderConfig {
     double ccf_temp_c = 250;
     double filament_diameter_mm = 1.75;   // PLA
     double retract_mm = 1.0;
-    double retract_speed_mm_s = 25;
+    double retract_speed_mm_s = 40;     // Marlin FWRETRACT default 45; the prime before a PLA path takes retract_mm / this
     double cutter_distance_mm = 42;       // cutter to nozzle tip: the thread feed at a path start
     double thread_speed_mm_s = 5;
     double max_extrusion_length_mm = 200; // Marlin EXTRUDE_MAXLENGTH: longer moves are split

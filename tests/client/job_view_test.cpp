@@ -78,9 +78,9 @@ TEST(JobView, OutcomeLineSummarisesACompletedJobAndNamesAFailure) {
 
 TEST(JobView, CellDetailsLeaveOutWhatTheServiceDidNotSend) {
     const json cell = {{"name", "sim-cell"}, {"simulated", true},
-                       {"robot", {{"io", "up"}, {"program", "running"}, {"event", 17}}}};
+                       {"robot", {{"io", "up"}, {"running", true}, {"event", 17}}}};
     const std::string t = cell_details(cell);
     EXPECT_THAT(t, HasSubstr("cell sim-cell (simulated)"));
-    EXPECT_THAT(t, HasSubstr("robot:  I/O up, program running, event 17"));
+    EXPECT_THAT(t, HasSubstr("robot:  I/O up, running, event 17"));
     EXPECT_THAT(t, Not(HasSubstr("board")));
 }

@@ -145,7 +145,7 @@ std::string cell_details(const json& cell) {
         out << "  board:  " << text(cell["board"], "state") << "  " << temperatures(cell) << "\n";
     if (has(cell, "robot")) {
         const json& r = cell["robot"];
-        out << "  robot:  I/O " << text(r, "io") << ", program " << text(r, "program");
+        out << "  robot:  I/O " << text(r, "io") << (r.value("running", false) ? ", running" : ", not running");
         if (has(r, "event")) out << ", event " << static_cast<long>(number(r, "event"));
         out << "\n";
     }

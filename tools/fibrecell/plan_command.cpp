@@ -1,20 +1,10 @@
 #include "tools/fibrecell/plan_command.hpp"
 
 #include "daemon/cell_config.hpp"
-#include "daemon/robot_plan.hpp"
-#include "planner/io/vtk_writer.hpp"
-#include "planner/job/job_spec.hpp"
-#include "planner/plan/field_stage.hpp"
-#include "planner/plan/layer_stage.hpp"
-#include "planner/plan/preview_svg.hpp"
-#include "planner/plan/report.hpp"
-#include "planner/plan/toolpaths_json.hpp"
-#include "planner/stopwatch.hpp"
+#include "daemon/jobs/plan_job.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 
-#include <spdlog/spdlog.h>
-
-#include <filesystem>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -22,6 +12,8 @@
 
 namespace fibrecell::tools {
 namespace {
+
+namespace jobs = daemon::jobs;
 
 struct PlanArgs {
     std::string job;
@@ -56,21 +48,6 @@ void print_summary(const planner::FieldStageResult& r, const std::string& out) {
     std::printf("wrote      %s/field.vtk, %s/report.json\n", out.c_str(), out.c_str());
 }
 
-void write_layer_outputs(const std::string& out, const planner::JobSpec& job,
-                         const planner::LayerStageResult& layers) {
-    planner::write_toolpaths_json(out + "/toolpaths.json", to_string(job.planner.strategy),
-                                  layers.layers);
-    // Fibre layers of the field strategy are drawn over their sigma map.
-    std::vector<planner::TriangleScalars> maps(layers.layers.size());
-    std::vector<const planner::TriangleScalars*> backgrounds(layers.layers.size(), nullptr);
-    for (std::size_t i = 0; i < layers.layers.size(); ++i) {
-        if (layers.sigma[i].empty()) continue;
-        maps[i] = {&layers.sections[i], layers.sigma[i]};
-        backgrounds[i] = &maps[i];
-    }
-    planner::write_preview(out + "/preview", layers.layers, layers.outlines, backgrounds);
-}
-
 void print_robot_summary(const daemon::RobotPlan& plan, const std::string& out) {
     const auto& s = plan.program.stats;
     std::printf(
@@ -102,45 +79,27 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
 }
 
 int run_plan(const PlanArgs& args) {
-    planner::Stopwatch clock;
     try {
-        planner::JobSpec job = planner::load_job_file(args.job);
-        const drivers::abb::RobotCellConfig robot = args.cell.empty()
-                                                        ? drivers::abb::RobotCellConfig{}
-                                                        : daemon::load_cell_config(args.cell).robot;
+        jobs::PlanRequest request{.job_file = args.job, .out_dir = args.out};
+        request.last_stage =
+            args.stage == "layers" ? jobs::PlanStage::layers : jobs::PlanStage::field;
         if (!args.strategy.empty())
-            job.planner.strategy = args.strategy == "field" ? planner::Strategy::field
-                                                            : planner::Strategy::contour_zigzag;
-        std::filesystem::create_directories(args.out);
-        std::fprintf(stderr, "planning %s (%s)\n", job.name.c_str(), args.job.c_str());
+            request.strategy = args.strategy == "field" ? planner::Strategy::field
+                                                        : planner::Strategy::contour_zigzag;
+        request.threads = args.threads;
+        if (!args.cell.empty()) request.robot = daemon::load_cell_config(args.cell).robot;
 
-        planner::FieldStageResult result;
-        std::optional<planner::LayerStageResult> layers;
-        std::optional<daemon::RobotPlan> robot_plan;
+        std::optional<jobs::PlanJobResult> plan;
         {
             ConsoleProgress progress;
-            planner::StepControl control{progress.sink(), nullptr};
-            result = planner::run_field_stage(job, control);
-            if (args.stage == "layers")
-                layers = planner::run_layer_stage(job, result, args.threads, control);
-            progress.update("write", 0.0);
-            planner::write_field_vtk(args.out + "/field.vtk", result.model.mesh,
-                                     {&*result.model.stress, &result.field.sigma_e,
-                                      &result.field.v_e, &result.v_defined});
-            nlohmann::json report = planner::field_stage_report(job, result);
-            if (layers) {
-                write_layer_outputs(args.out, job, *layers);
-                planner::add_layer_stage_report(report, *layers);
-                progress.update("robot", 0.0);
-                robot_plan = daemon::plan_robot(job, layers->layers, robot, args.out + "/rapid");
-                daemon::add_robot_report(report, *robot_plan);
-            }
-            report["timings_s"]["total"] = clock.elapsed();
-            planner::write_json_file(args.out + "/report.json", report);
+            plan = jobs::plan_job(
+                request, {progress.sink(), nullptr}, [&](const planner::JobSpec& job) {
+                    std::fprintf(stderr, "planning %s (%s)\n", job.name.c_str(), args.job.c_str());
+                });
         }
-        print_summary(result, args.out);
-        if (layers) print_layer_summary(*layers, args.out);
-        if (robot_plan) print_robot_summary(*robot_plan, args.out);
+        print_summary(plan->field, args.out);
+        if (plan->layers) print_layer_summary(*plan->layers, args.out);
+        if (plan->robot) print_robot_summary(*plan->robot, args.out);
         return 0;
     } catch (const std::exception& e) {
         // ConfigError, InputError, FeaError and the rest all carry a complete one-line message.

@@ -2,12 +2,43 @@
 // for manual testing (`picocom`, the daemon). Faults come from stdin, one command per line:
 //   corrupt K | drop K | duplicate K | swallow-ok K | delay-ok K SECONDS | garble-resend |
 //   reset-at K | reset | silent on|off | unplug | replug | runaway HEATER | action TEXT | quit
+// With --daemon it ignores stdin and runs until SIGTERM/SIGINT; --log appends every executed
+// command ("<simulated s>\t<command>") to a file, flushed as it goes, so that a test can read the
+// board's log after killing the service that drove it.
 #include "drivers/sim/mock_gt2560.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
+
+namespace {
+
+std::atomic<bool> stop_requested{false};
+extern "C" void on_stop_signal(int) { stop_requested = true; }
+
+// Appends the board's executed commands to `path` until `done`.
+void write_log(const fibrecell::drivers::sim::MockGt2560& mock, const std::string& path,
+               const std::atomic<bool>& done) {
+    std::ofstream out(path, std::ios::app);
+    std::size_t written = 0;
+    for (;;) {
+        const bool last = done.load();
+        const auto log = mock.executed();
+        for (; written < log.size(); ++written)
+            out << log[written].t_s << '\t' << log[written].text << '\n';
+        out.flush();
+        if (last) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     fibrecell::drivers::sim::MockGt2560Options o;
@@ -18,10 +49,27 @@ int main(int argc, char** argv) {
     app.add_flag("!--no-resend-ok", o.resend_ok, "no ok after Resend (older Marlin)");
     app.add_flag("!--no-emergency-parser", o.emergency_parser, "M108/M112/M410 only when read");
     app.add_flag("--advanced-ok", o.advanced_ok, "ok N<line> P<planner> B<buffer>");
+    app.add_option("--hotend-tau-s", o.hotend_tau_s, "hotend time constant (simulated s)");
+    app.add_option("--residency-s", o.residency_s, "M109 residency (simulated s)");
+    std::string log_path;
+    bool daemon = false;
+    app.add_option("--log", log_path, "append every executed command to this file");
+    app.add_flag("--daemon", daemon, "ignore stdin; run until SIGTERM or SIGINT");
     CLI11_PARSE(app, argc, argv);
 
     fibrecell::drivers::sim::MockGt2560 mock(o);
+    std::atomic<bool> done{false};
+    std::thread logger;
+    if (!log_path.empty()) logger = std::thread([&] { write_log(mock, log_path, done); });
     std::cout << "port " << mock.port_path() << std::endl;
+    if (daemon) {
+        std::signal(SIGTERM, on_stop_signal);
+        std::signal(SIGINT, on_stop_signal);
+        while (!stop_requested) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        done = true;
+        if (logger.joinable()) logger.join();
+        return 0;
+    }
     std::string line;
     while (std::getline(std::cin, line)) {
         std::istringstream in(line);
@@ -46,5 +94,7 @@ int main(int argc, char** argv) {
         else if (!cmd.empty()) { std::cerr << "mock-gt2560: unknown or incomplete control command '" << line << "'\n"; continue; }
         std::cout << "done " << cmd << std::endl;
     }
+    done = true;
+    if (logger.joinable()) logger.join();
     return 0;
 }

@@ -116,6 +116,11 @@ FcStatus FcMainControl::request_run(const FcRunRequest& request,
     FcStatus s = status();
     if (s.state == FcState::rejected)
         throw FcRunError("FcMain rejected the run: " + s.message);
+    // FcMain clears a request it finds on its way into the cycle (a leftover of a reset): the
+    // run did not start then, and saying so beats waiting for events that never come.
+    if (s.state != FcState::running && s.state != FcState::paused)
+        throw FcRunError("FcMain did not start the run (state " + std::string(to_string(s.state)) +
+                         (s.message.empty() ? "" : ": " + s.message) + ")");
     return s;
 }
 

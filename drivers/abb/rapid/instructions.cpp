@@ -34,6 +34,7 @@ constexpr P p_startload[] = {"string", "loadsession"};
 constexpr P p_loadsession[] = {"loadsession"};
 constexpr P p_intnum[] = {"intnum"};
 constexpr P p_isignal_di[] = {"signaldi", "num", "intnum"};
+constexpr P p_isignal_gi[] = {"signalgi", "intnum"};  // any change of the group
 constexpr P p_isignal_do[] = {"signaldo", "num", "intnum"};
 constexpr P p_itimer[] = {"num", "intnum"};
 constexpr P p_clock[] = {"clock"};
@@ -148,6 +149,7 @@ const InstructionInfo instructions[] = {
     {"VelSet", p_num2, o_none, no_move},
     {"IDelete", p_intnum, o_none, no_move},
     {"ISignalDI", p_isignal_di, o_isignal, no_move},
+    {"ISignalGI", p_isignal_gi, o_isignal, no_move},
     {"ISignalDO", p_isignal_do, o_isignal, no_move},
     {"ITimer", p_itimer, o_isignal, no_move},
     {"ISleep", p_intnum, o_none, no_move},

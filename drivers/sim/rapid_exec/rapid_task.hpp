@@ -20,7 +20,9 @@
 
 namespace fibrecell::drivers::sim {
 
-// What the task reads and writes besides motion. Called on the task thread; must not block long.
+// What the task reads and writes besides motion. Called on the task thread while it holds the
+// program state; must not block long, and may call back into the task only through
+// signal_changed() and status() (read_data, write_data, load, start would wait for the task).
 struct TaskIo {
     // Current value of an input or output signal (DInput, GInput, DOutput, GOutput); throws
     // std::out_of_range for an unknown signal name.
@@ -59,12 +61,16 @@ class RapidTask {
     void load(abb::rapid::Module module);
     void unload(const std::string& module_name);
 
-    // Program pointer to main: data of all modules back to their initial values except PERS.
+    // Program pointer to main: data of all modules back to their initial values except PERS;
+    // interrupts deleted, modules the program loaded (StartLoad/Load) unloaded, the motion path
+    // cleared. Only while stopped (std::logic_error otherwise).
     void reset_pp();
     // Starts (or continues from the program pointer) on the task thread. Throws std::logic_error
-    // when there is no main routine.
+    // when there is no main routine. status() shows running as soon as it returns. After an
+    // error, EXIT or the end of main, the program starts again at main (data kept).
     void start();
     // Stops execution at the next statement boundary and the motion (StopMove); start() continues.
+    // Never blocks: status() shows stopped once the thread has parked.
     void stop();
 
     // An input changed (the I/O side calls this on every change of a signal the task may watch

@@ -1,0 +1,51 @@
+#pragma once
+// The `api:` section of the cell YAML: where the socket API listens and its limits
+// (docs/socket-api.md). Read once at start-up and again on SIGHUP.
+//
+//   api:
+//     socket: /run/fibrecelld/api.sock
+//     socket_mode: "0660"       # octal; who may connect is decided by mode and group
+//     socket_group: fibrecell   # optional: name or numeric gid
+//     max_request_bytes: 16777216
+//     tcp: {enabled: true, host: 127.0.0.1, port: 7420, token_file: /etc/fibrecelld/api.token}
+
+#include "config/yaml_section.hpp"
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace fibrecell::api {
+
+struct ApiTcpConfig {
+    bool enabled = false;
+    std::string host = "127.0.0.1";  // an IP address; loopback unless told otherwise
+    std::uint16_t port = 7420;       // 0 (tests only): an ephemeral port, see ApiServer::tcp_port()
+    std::string token;               // from `token` or the first line of `token_file`
+    std::chrono::milliseconds auth_timeout{10000};  // a connection must call server.auth by then
+};
+
+struct ApiConfig {
+    std::string socket_path = "/run/fibrecelld/api.sock";
+    unsigned socket_mode = 0660;  // permission bits of the socket file
+    std::string socket_group;     // group name or numeric gid; "" keeps the process's group
+    ApiTcpConfig tcp;
+    std::size_t max_request_bytes = std::size_t{16} << 20;  // one request line; jobs carry files
+    int max_clients = 64;                                   // connections at once, both transports
+    double progress_rate_hz = 2.0;  // latest-only events per topic per client, at most this often
+    // Outgoing bytes a client may leave unread before it is disconnected (a slow subscriber
+    // never holds the service back). A single message larger than this still goes out.
+    std::size_t max_client_queue_bytes = std::size_t{32} << 20;
+};
+
+// Reads and checks the section (ranges, octal mode, group exists, token or token_file readable,
+// unknown keys); throws config::ConfigError naming the key.
+ApiConfig load_api_config(config::Section s);
+// The same for a bare `api:` node; `origin` names the file in messages.
+ApiConfig load_api_config(const YAML::Node& node, const std::string& origin);
+
+// Parses an octal file mode ("0660", "660", "0o660"); returns false when it is not one (<= 0777).
+bool parse_octal_mode(const std::string& text, unsigned& mode);
+
+}  // namespace fibrecell::api

@@ -1,0 +1,282 @@
+#include "daemon/api/api_server.hpp"
+
+#include "daemon/api/client_session.hpp"
+#include "daemon/api/server_core.hpp"
+#include "daemon/api/socket_file.hpp"
+
+#include <spdlog/spdlog.h>
+#include <boost/asio/bind_executor.hpp>
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include <sys/socket.h>
+
+namespace fibrecell::api {
+
+namespace asio = boost::asio;
+using local_stream = asio::local::stream_protocol;
+using asio::ip::tcp;
+
+namespace {
+
+std::string unix_peer(int fd) {
+    ucred cred{};
+    socklen_t len = sizeof cred;
+    if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0) return "unix";
+    return "unix uid=" + std::to_string(cred.uid) + " pid=" + std::to_string(cred.pid);
+}
+
+void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket,
+           Transport transport, std::string peer) {
+    const std::uint64_t id = core->next_client++;
+    core->counters.connections++;
+    core->counters.clients++;
+    auto session =
+        std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer));
+    core->sessions[id] = session;
+    if (core->sessions.size() > static_cast<std::size_t>(core->config.max_clients)) {
+        core->counters.refused_full++;
+        spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}", id,
+                     session->peer(), core->config.max_clients);
+        session->refuse(error_response(nullptr, errc::unavailable,
+                                       "unavailable: fibrecelld serves at most " +
+                                           std::to_string(core->config.max_clients) +
+                                           " clients at once (api.max_clients)"));
+        return;
+    }
+    spdlog::info("api.client_connected client={} peer={}", id, session->peer());
+    session->start();
+}
+
+// After an accept error (out of file descriptors, ...) wait a little instead of spinning.
+template <class Retry>
+void retry_later(const std::shared_ptr<ServerCore>& core, Retry retry) {
+    auto timer = std::make_shared<asio::steady_timer>(core->strand, std::chrono::milliseconds(100));
+    timer->async_wait([timer, retry](const boost::system::error_code&) { retry(); });
+}
+
+void accept_unix(const std::shared_ptr<ServerCore>& core) {
+    core->unix_acceptor->async_accept(asio::bind_executor(
+        core->strand, [core](const boost::system::error_code& ec, local_stream::socket socket) {
+            if (core->stopped || ec == asio::error::operation_aborted) return;
+            if (ec) {
+                spdlog::warn("api.accept_failed transport=unix: {}", ec.message());
+                retry_later(core, [core] {
+                    if (!core->stopped) accept_unix(core);
+                });
+                return;
+            }
+            std::string peer = unix_peer(socket.native_handle());
+            ClientSession::Socket generic(core->io, asio::generic::stream_protocol(local_stream()),
+                                          socket.release());
+            admit(core, std::move(generic), Transport::unix_socket, std::move(peer));
+            accept_unix(core);
+        }));
+}
+
+void accept_tcp(const std::shared_ptr<ServerCore>& core) {
+    core->tcp_acceptor->async_accept(asio::bind_executor(
+        core->strand, [core](const boost::system::error_code& ec, tcp::socket socket) {
+            if (core->stopped || ec == asio::error::operation_aborted) return;
+            if (ec) {
+                spdlog::warn("api.accept_failed transport=tcp: {}", ec.message());
+                retry_later(core, [core] {
+                    if (!core->stopped) accept_tcp(core);
+                });
+                return;
+            }
+            boost::system::error_code ignored;
+            socket.set_option(tcp::no_delay(true), ignored);
+            const auto remote = socket.remote_endpoint(ignored);
+            std::string peer =
+                "tcp " + remote.address().to_string() + ":" + std::to_string(remote.port());
+            const auto protocol = asio::generic::stream_protocol(remote.protocol());
+            ClientSession::Socket generic(core->io, protocol, socket.release());
+            admit(core, std::move(generic), Transport::tcp, std::move(peer));
+            accept_tcp(core);
+        }));
+}
+
+std::vector<std::shared_ptr<ClientSession>> live_sessions(const ServerCore& core) {
+    std::vector<std::shared_ptr<ClientSession>> out;
+    for (const auto& [id, weak] : core.sessions)
+        if (auto s = weak.lock()) out.push_back(std::move(s));
+    return out;
+}
+
+// Closes listeners and removes the socket file; `graceful` lets queued answers go out first.
+void stop_core(const std::shared_ptr<ServerCore>& core, bool graceful) {
+    if (core->stopped) return;
+    core->stopped = true;
+    boost::system::error_code ignored;
+    if (core->unix_acceptor) core->unix_acceptor->close(ignored);
+    if (core->tcp_acceptor) core->tcp_acceptor->close(ignored);
+    remove_socket_file_if_ours(core->config.socket_path, core->socket_id);
+    core->socket_id = {};
+    for (const auto& s : live_sessions(*core)) {
+        if (graceful)
+            s->shutdown();
+        else
+            s->close("server stopping");
+    }
+    spdlog::info("api.stopped");
+}
+
+void bind_unix(ServerCore& core) {
+    const ApiConfig& c = core.config;
+    prepare_socket_path(c.socket_path);
+    auto acceptor = std::make_unique<local_stream::acceptor>(core.io);
+    boost::system::error_code ec;
+    acceptor->open(local_stream(), ec);
+    if (!ec) acceptor->bind(local_stream::endpoint(c.socket_path), ec);
+    if (ec) throw ApiStartError("cannot create socket " + c.socket_path + ": " + ec.message());
+    try {
+        // Mode and group before listen(): nobody connects through a wider mode meanwhile.
+        apply_socket_permissions(c.socket_path, c.socket_mode, c.socket_group);
+    } catch (...) {
+        acceptor->close(ec);
+        ::unlink(c.socket_path.c_str());
+        throw;
+    }
+    core.socket_id = identify_socket_file(c.socket_path);
+    acceptor->listen(asio::socket_base::max_listen_connections, ec);
+    if (ec) {
+        remove_socket_file_if_ours(c.socket_path, core.socket_id);
+        throw ApiStartError("cannot listen on " + c.socket_path + ": " + ec.message());
+    }
+    core.unix_acceptor = std::move(acceptor);
+}
+
+void bind_tcp(ServerCore& core) {
+    const ApiTcpConfig& c = core.config.tcp;
+    const std::string where = "TCP " + c.host + ":" + std::to_string(c.port);
+    if (c.token.empty())
+        throw ApiStartError("cannot listen on " + where + ": api.tcp needs a token");
+    boost::system::error_code ec;
+    const auto address = asio::ip::make_address(c.host, ec);
+    if (ec) throw ApiStartError("cannot listen on " + where + ": not an IP address");
+    const tcp::endpoint endpoint(address, c.port);
+    auto acceptor = std::make_unique<tcp::acceptor>(core.io);
+    acceptor->open(endpoint.protocol(), ec);
+    if (!ec) acceptor->set_option(tcp::acceptor::reuse_address(true), ec);
+    if (!ec) acceptor->bind(endpoint, ec);
+    if (!ec) acceptor->listen(asio::socket_base::max_listen_connections, ec);
+    if (ec) throw ApiStartError("cannot listen on " + where + ": " + ec.message());
+    core.tcp_port = acceptor->local_endpoint().port();
+    if (!address.is_loopback())
+        spdlog::warn("api.tcp_exposed address={} port={}: reachable from other hosts (token only)",
+                     c.host, core.tcp_port);
+    core.tcp_acceptor = std::move(acceptor);
+}
+
+}  // namespace
+
+struct ApiServer::Impl {
+    std::shared_ptr<ServerCore> core;
+    bool started = false;
+};
+
+ApiServer::ApiServer(boost::asio::io_context& io, ApiConfig config)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->core = std::make_shared<ServerCore>(io, std::move(config));
+}
+
+ApiServer::~ApiServer() {
+    if (impl_->started) stop_core(impl_->core, false);
+}
+
+void ApiServer::add_method(std::string name, SyncHandler handler) {
+    impl_->core->methods.add(std::move(name), std::move(handler));
+}
+
+void ApiServer::add_async_method(std::string name, AsyncHandler handler) {
+    impl_->core->methods.add_async(std::move(name), std::move(handler));
+}
+
+void ApiServer::start() {
+    if (impl_->started) throw ApiStartError("the API server is already started");
+    const auto& core = impl_->core;
+    if (core->config.socket_path.empty() && !core->config.tcp.enabled)
+        throw ApiStartError("the API has neither a socket path nor TCP enabled");
+    if (!core->config.socket_path.empty()) bind_unix(*core);
+    try {
+        if (core->config.tcp.enabled) bind_tcp(*core);
+    } catch (...) {
+        boost::system::error_code ignored;
+        if (core->unix_acceptor) core->unix_acceptor->close(ignored);
+        remove_socket_file_if_ours(core->config.socket_path, core->socket_id);
+        throw;
+    }
+    impl_->started = true;
+    if (core->unix_acceptor)
+        spdlog::info("api.listening socket={} mode={:04o} group={}", core->config.socket_path,
+                     core->config.socket_mode,
+                     core->config.socket_group.empty() ? "-" : core->config.socket_group);
+    if (core->tcp_acceptor)
+        spdlog::info("api.listening tcp={}:{}", core->config.tcp.host, core->tcp_port);
+    asio::dispatch(core->strand, [core] {
+        if (core->stopped) return;
+        if (core->unix_acceptor) accept_unix(core);
+        if (core->tcp_acceptor) accept_tcp(core);
+    });
+}
+
+void ApiServer::stop() {
+    if (!impl_->started) return;
+    asio::dispatch(impl_->core->strand, [core = impl_->core] { stop_core(core, true); });
+}
+
+void ApiServer::publish(ApiEvent event) {
+    auto line = std::make_shared<const std::string>(
+        to_line(notification_message(event.method, std::move(event.params))));
+    // Posted, never run inline: events from one thread keep their order.
+    asio::post(impl_->core->strand, [core = impl_->core, topic = std::move(event.topic),
+                                     method = std::move(event.method), delivery = event.delivery,
+                                     line = std::move(line)] {
+        if (core->stopped) return;
+        for (const auto& s : live_sessions(*core)) s->deliver(topic, method, delivery, line);
+    });
+}
+
+void ApiServer::update_limits(const ApiConfig& config) {
+    asio::post(impl_->core->strand, [core = impl_->core, config] {
+        core->config.tcp.token = config.tcp.token;
+        core->config.tcp.auth_timeout = config.tcp.auth_timeout;
+        core->config.max_request_bytes = config.max_request_bytes;
+        core->config.max_clients = config.max_clients;
+        core->config.max_client_queue_bytes = config.max_client_queue_bytes;
+        core->config.progress_rate_hz = config.progress_rate_hz;
+        const auto interval =
+            std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / config.progress_rate_hz));
+        for (const auto& s : live_sessions(*core)) s->set_progress_interval(interval);
+        spdlog::info("api.limits_updated max_request_bytes={} max_clients={} progress_rate_hz={}",
+                     config.max_request_bytes, config.max_clients, config.progress_rate_hz);
+    });
+}
+
+std::uint16_t ApiServer::tcp_port() const {
+    return impl_->core->tcp_port;
+}
+
+const std::string& ApiServer::socket_path() const {
+    return impl_->core->config.socket_path;
+}
+
+ApiServerStats ApiServer::stats() const {
+    const ServerCounters& c = impl_->core->counters;
+    ApiServerStats s;
+    s.clients = c.clients.load();
+    s.connections = c.connections.load();
+    s.requests = c.requests.load();
+    s.errors = c.errors.load();
+    s.notifications_sent = c.notifications_sent.load();
+    s.notifications_coalesced = c.notifications_coalesced.load();
+    s.dropped_slow = c.dropped_slow.load();
+    s.refused_full = c.refused_full.load();
+    s.oversized = c.oversized.load();
+    s.auth_failures = c.auth_failures.load();
+    return s;
+}
+
+}  // namespace fibrecell::api

@@ -1,0 +1,85 @@
+#pragma once
+// The service side of the socket API (docs/socket-api.md): newline-delimited JSON-RPC 2.0 over a
+// Unix socket and, when configured, TCP with a token. Transport and protocol only: the job logic
+// registers its methods here and publishes its events through publish().
+//
+//   boost::asio::io_context io;
+//   ApiServer api(io, config);
+//   api.add_method("job.list", [&](const json& params, const CallContext&) { ... });
+//   api.start();                       // binds; throws ApiStartError with a one-line reason
+//   std::thread io_thread([&] { io.run(); });
+//   api.publish({.topic = job_id, .method = notify::job_state, .params = {...}});
+//
+// Threading: the server does all its work on one strand of the caller's io_context (which may
+// run on several threads). Register methods before start(). publish(), stop(), stats() and
+// Responder are safe from any thread. Sync handlers run on the strand: keep them short and hand
+// long work to workers through an async handler. Destroy the server from an io thread or once
+// the io_context no longer runs, and before the io_context.
+
+#include "daemon/api/api_config.hpp"
+#include "daemon/api/api_event.hpp"
+#include "daemon/api/method_registry.hpp"
+
+#include <boost/asio/io_context.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace fibrecell::api {
+
+class ApiStartError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct ApiServerStats {
+    std::uint64_t clients = 0;                  // connected now
+    std::uint64_t connections = 0;              // accepted since start
+    std::uint64_t requests = 0;                 // request objects dispatched (batch entries count)
+    std::uint64_t errors = 0;                   // error responses sent
+    std::uint64_t notifications_sent = 0;       // notification lines queued to clients
+    std::uint64_t notifications_coalesced = 0;  // latest-only events replaced before sending
+    std::uint64_t dropped_slow = 0;             // clients disconnected for an overfull queue
+    std::uint64_t refused_full = 0;             // connections refused at api.max_clients
+    std::uint64_t oversized = 0;                // request lines above api.max_request_bytes
+    std::uint64_t auth_failures = 0;            // wrong token or no server.auth in time
+};
+
+class ApiServer {
+  public:
+    ApiServer(boost::asio::io_context& io, ApiConfig config);
+    ~ApiServer();
+    ApiServer(const ApiServer&) = delete;
+    ApiServer& operator=(const ApiServer&) = delete;
+
+    void add_method(std::string name, SyncHandler handler);
+    void add_async_method(std::string name, AsyncHandler handler);
+
+    // Binds the Unix socket (a stale file from a dead process is replaced; a live one is
+    // "another fibrecelld is listening on <path>") with its mode and group, and TCP when enabled;
+    // then accepts on the io_context. Throws ApiStartError.
+    void start();
+    // Closes the listeners and every connection and removes the socket file (if still ours).
+    // Idempotent; asynchronous when called off the strand.
+    void stop();
+
+    // Sends an event to every client subscribed to its topic (or to "*"). Thread-safe; events
+    // published from one thread reach each client in that order.
+    void publish(ApiEvent event);
+
+    // Applies the settings that need no new listener (token, limits, progress rate); a changed
+    // socket path/mode/group or TCP address takes a restart. Thread-safe.
+    void update_limits(const ApiConfig& config);
+
+    std::uint16_t tcp_port() const;  // the bound TCP port (0 when TCP is off)
+    const std::string& socket_path() const;
+    ApiServerStats stats() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fibrecell::api

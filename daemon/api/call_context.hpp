@@ -1,0 +1,19 @@
+#pragma once
+// What a method handler knows about the call besides its params.
+
+#include <cstdint>
+#include <string>
+
+namespace fibrecell::api {
+
+enum class Transport { unix_socket, tcp };
+
+struct CallContext {
+    std::string method;        // "job.start"
+    std::uint64_t client = 0;  // connection number, unique for the server's lifetime
+    Transport transport = Transport::unix_socket;
+    std::string peer;           // "unix uid=1000 pid=4242" or "tcp 127.0.0.1:51234", for logs
+    bool notification = false;  // no id: the answer is discarded
+};
+
+}  // namespace fibrecell::api

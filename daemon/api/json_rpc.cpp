@@ -1,0 +1,104 @@
+#include "daemon/api/json_rpc.hpp"
+
+#include "daemon/api/api_error.hpp"
+
+#include <algorithm>
+
+namespace fibrecell::api {
+
+namespace {
+
+bool valid_id(const nlohmann::json& id) {
+    return id.is_string() || id.is_number() || id.is_null();
+}
+
+CheckedRequest invalid(const nlohmann::json& id, const std::string& why) {
+    return {std::nullopt, error_response(id, errc::invalid_request, "invalid request: " + why)};
+}
+
+}  // namespace
+
+CheckedRequest check_request(nlohmann::json&& element) {
+    if (!element.is_object()) return invalid(nullptr, "a request must be a JSON object");
+    nlohmann::json id = nullptr;
+    const auto id_it = element.find("id");
+    const bool notification = id_it == element.end();
+    if (!notification) {
+        if (!valid_id(*id_it)) return invalid(nullptr, "id must be a string, a number or null");
+        id = *id_it;
+    }
+    const auto version = element.find("jsonrpc");
+    if (version == element.end() || *version != "2.0")
+        return invalid(id, "\"jsonrpc\" must be \"2.0\"");
+    const auto method = element.find("method");
+    if (method == element.end() || !method->is_string())
+        return invalid(id, "\"method\" must be a string");
+    RpcRequest r;
+    r.method = method->get<std::string>();
+    r.id = std::move(id);
+    r.notification = notification;
+    for (const auto& [key, value] : element.items())
+        if (key != "jsonrpc" && key != "method" && key != "params" && key != "id")
+            return invalid(r.id, "unknown member \"" + key + "\"");
+    const auto params = element.find("params");
+    if (params == element.end()) {
+        r.params = nlohmann::json::object();
+    } else if (params->is_object() || params->is_array()) {
+        r.params = std::move(*params);
+    } else {
+        return invalid(r.id, "\"params\" must be an object or an array");
+    }
+    return {std::move(r), nullptr};
+}
+
+std::size_t nesting_depth(std::string_view text) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char ch : text) {
+        if (in_string) {
+            if (escaped)
+                escaped = false;
+            else if (ch == '\\')
+                escaped = true;
+            else if (ch == '"')
+                in_string = false;
+        } else if (ch == '"') {
+            in_string = true;
+        } else if (ch == '[' || ch == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((ch == ']' || ch == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+nlohmann::json result_response(const nlohmann::json& id, nlohmann::json result) {
+    return {{"jsonrpc", "2.0"}, {"id", id}, {"result", std::move(result)}};
+}
+
+nlohmann::json error_response(const nlohmann::json& id, int code, const std::string& message,
+                              const nlohmann::json& data) {
+    nlohmann::json error = {{"code", code}, {"message", message}};
+    if (!data.is_null()) error["data"] = data;
+    return {{"jsonrpc", "2.0"}, {"id", id}, {"error", std::move(error)}};
+}
+
+nlohmann::json notification_message(const std::string& method, nlohmann::json params) {
+    return {{"jsonrpc", "2.0"}, {"method", method}, {"params", std::move(params)}};
+}
+
+nlohmann::json request_message(const nlohmann::json& id, const std::string& method,
+                               nlohmann::json params) {
+    return {{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", std::move(params)}};
+}
+
+std::string to_line(const nlohmann::json& message) {
+    std::string line = message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    line.push_back('\n');
+    return line;
+}
+
+}  // namespace fibrecell::api

@@ -1,0 +1,71 @@
+#pragma once
+// journal.jsonl of a job folder: an append-only record of the print's events, one JSON object per
+// line, each on the disk (fdatasync) before append returns.
+//
+//   {"seq":57,"kind":"cut","layer":3,"path":2,"phase":"sending"}    before its commands go out
+//   {"seq":57,"kind":"cut","layer":3,"path":2,"phase":"confirmed"}  the board acknowledged them
+//   {"phase":"resume","first_event":41}                             a resumed run re-enters here
+//
+// The service writes `sending` BEFORE it sends an extruder action, so after a crash an event that
+// may have reached the board is known; `confirmed` after the sync engine's on_event_done. The last
+// confirmed event (the highest, over all runs) is where resume_point() starts from.
+
+#include "drivers/abb/program/print_program.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+namespace fibrecell::daemon::jobs {
+
+class DurableAppender;
+
+struct JournalEvent {
+    std::int64_t sequence = 0;  // 1-based event number of the print program
+    drivers::abb::EventKind kind = drivers::abb::EventKind::layer_end;
+    int layer = -1;
+    int path = -1;
+};
+
+struct JournalSummary {
+    std::int64_t last_sent = 0;       // highest `sending` sequence (0: none)
+    std::int64_t last_confirmed = 0;  // highest `confirmed` sequence (0: none)
+    std::size_t records = 0;          // complete lines read
+    bool torn_tail = false;           // the last line was cut short by a crash (ignored)
+};
+
+class JournalError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Reads a journal; a missing file is an empty journal. A torn last line (no '\n', or not JSON) is
+// ignored and reported; any other bad line throws JournalError naming the file and line.
+JournalSummary read_journal(const std::filesystem::path& path);
+
+// Cuts a torn last line off, so that the next record starts on a line of its own.
+void repair_journal(const std::filesystem::path& path);
+
+class JobJournal {
+  public:
+    // Opens (creates) the journal for appending; `summary` is what read_journal found in it.
+    JobJournal(const std::filesystem::path& path, const JournalSummary& summary = {});
+    ~JobJournal();
+
+    // Each returns once the record is on the disk. Thread-safe. Throws std::system_error.
+    void sending(const JournalEvent& e);
+    void confirmed(const JournalEvent& e);
+    void resumed(std::int64_t first_event);
+
+    std::int64_t last_sent() const;
+    std::int64_t last_confirmed() const;
+
+  private:
+    mutable std::mutex mu_;
+    std::unique_ptr<DurableAppender> file_;
+    JournalSummary summary_;
+};
+
+}  // namespace fibrecell::daemon::jobs

@@ -1,0 +1,67 @@
+#include "daemon/jobs/job_record.hpp"
+
+#include <chrono>
+#include <ctime>
+
+namespace fibrecell::daemon::jobs {
+namespace {
+
+template <class T>
+T field(const nlohmann::json& j, const char* key) {
+    if (!j.contains(key)) throw StateFileError(std::string(key) + ": missing");
+    try {
+        return j.at(key).get<T>();
+    } catch (const nlohmann::json::exception&) {
+        throw StateFileError(std::string(key) + ": wrong type (" + j.at(key).type_name() + ")");
+    }
+}
+
+}  // namespace
+
+nlohmann::json to_json(const JobRecord& r) {
+    return {{"format", std::string(job_state_format)},
+            {"id", r.id},
+            {"name", r.name},
+            {"state", std::string(to_string(r.state))},
+            {"reason", r.reason},
+            {"submitted_at", r.submitted_at},
+            {"updated_at", r.updated_at},
+            {"plan_attempts", r.plan_attempts},
+            {"start_when_planned", r.start_when_planned},
+            {"last_confirmed_event", r.last_confirmed_event}};
+}
+
+JobRecord record_from_json(const nlohmann::json& j) {
+    if (!j.is_object()) throw StateFileError("not a JSON object");
+    const auto format = field<std::string>(j, "format");
+    if (format != job_state_format)
+        throw StateFileError("format: expected '" + std::string(job_state_format) + "', got '" +
+                             format + "'");
+    JobRecord r;
+    r.id = field<std::int64_t>(j, "id");
+    if (r.id < 1) throw StateFileError("id: must be positive");
+    r.name = field<std::string>(j, "name");
+    try {
+        r.state = parse_job_state(field<std::string>(j, "state"));
+    } catch (const std::invalid_argument& e) {
+        throw StateFileError(std::string("state: ") + e.what());
+    }
+    r.reason = field<std::string>(j, "reason");
+    r.submitted_at = field<std::string>(j, "submitted_at");
+    r.updated_at = field<std::string>(j, "updated_at");
+    r.plan_attempts = field<int>(j, "plan_attempts");
+    r.start_when_planned = field<bool>(j, "start_when_planned");
+    r.last_confirmed_event = field<std::int64_t>(j, "last_confirmed_event");
+    return r;
+}
+
+std::string utc_now() {
+    const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return text;
+}
+
+}  // namespace fibrecell::daemon::jobs

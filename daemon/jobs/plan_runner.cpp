@@ -1,0 +1,143 @@
+#include "daemon/jobs/plan_runner.hpp"
+
+#include "daemon/jobs/plan_job.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace fibrecell::daemon::jobs {
+
+PlanRunner::PlanRunner(JobStore& store, PlanRunnerOptions options)
+    : store_(store), options_(std::move(options)) {
+    const int n = std::max(1, options_.workers);
+    for (int i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+}
+
+PlanRunner::~PlanRunner() {
+    stop();
+}
+
+void PlanRunner::on_progress(std::function<void(std::int64_t, const JobProgress&)> f) {
+    std::lock_guard lock(mu_);
+    on_progress_ = std::move(f);
+}
+
+void PlanRunner::on_finished(std::function<void(const JobRecord&)> f) {
+    std::lock_guard lock(mu_);
+    on_finished_ = std::move(f);
+}
+
+void PlanRunner::enqueue(std::int64_t id) {
+    {
+        std::lock_guard lock(mu_);
+        queue_.push_back(id);
+    }
+    store_.set_progress(id, {"queued", 0});
+    cv_.notify_all();
+}
+
+JobRecord PlanRunner::abort(std::int64_t id) {
+    JobRecord r = store_.request(id, JobAction::abort);
+    {
+        std::lock_guard lock(mu_);
+        queue_.erase(std::remove(queue_.begin(), queue_.end(), id), queue_.end());
+        if (const auto it = running_.find(id); it != running_.end()) it->second->cancel();
+    }
+    cv_.notify_all();
+    return r;
+}
+
+void PlanRunner::wait_idle() {
+    std::unique_lock lock(mu_);
+    cv_.wait(lock, [&] { return (queue_.empty() && running_.empty()) || stopping_; });
+}
+
+void PlanRunner::stop() {
+    {
+        std::lock_guard lock(mu_);
+        if (stopping_ && workers_.empty()) return;
+        stopping_ = true;
+        for (auto& [id, token] : running_) token->cancel();
+    }
+    cv_.notify_all();
+    for (auto& t : workers_) t.join();
+    workers_.clear();
+}
+
+void PlanRunner::work() {
+    for (;;) {
+        std::int64_t id = 0;
+        {
+            std::unique_lock lock(mu_);
+            cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+            if (stopping_) return;
+            id = queue_.front();
+            queue_.pop_front();
+            running_.emplace(id, std::make_shared<planner::CancelToken>());
+        }
+        try {
+            plan_one(id);
+        } catch (const std::exception& e) {  // the store could not write the outcome
+            spdlog::error("job.plan_outcome_lost job {}: {}", id, e.what());
+        }
+        {
+            std::lock_guard lock(mu_);
+            running_.erase(id);
+        }
+        cv_.notify_all();
+    }
+}
+
+void PlanRunner::plan_one(std::int64_t id) {
+    std::shared_ptr<planner::CancelToken> token;
+    std::function<void(std::int64_t, const JobProgress&)> progress_observer;
+    std::function<void(const JobRecord&)> finished_observer;
+    {
+        std::lock_guard lock(mu_);
+        token = running_.at(id);
+        progress_observer = on_progress_;
+        finished_observer = on_finished_;
+    }
+    std::optional<PlanTicket> ticket;
+    try {
+        ticket = store_.begin_planning(id);
+    } catch (const std::exception& e) {
+        spdlog::error("job.plan_failed job {}: cannot prepare: {}", id, e.what());
+        if (auto r = store_.apply(id, JobAction::plan_failed, e.what()); r && finished_observer)
+            finished_observer(*r);
+        return;
+    }
+    if (!ticket) return;  // aborted or removed while it waited
+    spdlog::info("job.planning job {}", id);
+
+    const auto sink = [&](std::string_view stage, double fraction) {
+        const JobProgress p{std::string(stage), fraction};
+        store_.set_progress(id, p);
+        if (progress_observer) progress_observer(id, p);
+    };
+    PlanRequest request{.job_file = ticket->job_file, .out_dir = ticket->plan_dir};
+    request.threads = options_.planner_threads;
+    request.robot = options_.robot;
+    std::optional<JobRecord> result;
+    try {
+        plan_job(request, {sink, token.get()});
+        result = store_.apply(id, JobAction::plan_done);
+    } catch (const planner::Cancelled&) {
+        bool stopping = false;
+        {
+            std::lock_guard lock(mu_);
+            stopping = stopping_;
+        }
+        // An abort moved the job already; a shutdown leaves it planning for the next start.
+        if (stopping) store_.planning_stopped(id);
+        spdlog::info("job.plan_cancelled job {}", id);
+        return;
+    } catch (const std::exception& e) {
+        spdlog::warn("job.plan_failed job {}: {}", id, e.what());
+        result = store_.apply(id, JobAction::plan_failed, e.what());
+    }
+    if (result && finished_observer) finished_observer(*result);
+}
+
+}  // namespace fibrecell::daemon::jobs

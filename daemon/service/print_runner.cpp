@@ -1,0 +1,360 @@
+#include "daemon/service/print_runner.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <fstream>
+
+namespace fibrecell::daemon::service {
+
+namespace abb = drivers::abb;
+using Clock = std::chrono::steady_clock;
+using jobs::JobAction;
+using jobs::JobState;
+using nlohmann::json;
+
+namespace {
+
+json summary_json(const sync::LatencySummary& s) {
+    return {{"count", s.count}, {"median", s.median}, {"p99", s.p99}, {"max", s.max}};
+}
+
+// The engine's timing of one event kind, when it has seen one.
+std::optional<sync::KindTiming> timing_of(const sync::SyncStatus& s, abb::EventKind kind) {
+    for (const auto& t : s.stats.timing)
+        if (t.kind == kind) return t;
+    return std::nullopt;
+}
+
+double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+}  // namespace
+
+struct PrintRunner::Active {
+    std::int64_t id = 0;
+    PrintPlan plan;  // before the session, which keeps a reference to its program
+    std::shared_ptr<jobs::JobJournal> journal;
+    std::unique_ptr<print::PrintSession> session;
+    Clock::time_point started = Clock::now();
+    std::optional<Clock::time_point> paused_since;
+    bool heaters_off = false;
+    bool fault_reported = false;
+    std::atomic<std::int64_t> last_confirmed{0};
+    std::atomic<int> layer{-1};
+    sync::SyncStatus sync;  // as of the last poll
+};
+
+PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const CellConfig& cell,
+                         PrintRunnerOptions options)
+    : store_(store), devices_(devices), cell_(cell), options_(options) {
+    thread_ = std::thread([this] { run(); });
+}
+
+PrintRunner::~PrintRunner() { stop(); }
+
+void PrintRunner::on_progress(std::function<void(std::int64_t, const json&)> f) {
+    on_progress_ = std::move(f);
+}
+
+void PrintRunner::post(Command c) {
+    {
+        std::lock_guard lock(mu_);
+        if (stopping_) {
+            if (c.done) c.done("the service is stopping");
+            return;
+        }
+        commands_.push_back(std::move(c));
+    }
+    cv_.notify_one();
+}
+
+void PrintRunner::start(std::int64_t id, Done done) { post({Command::Kind::start, id, std::move(done)}); }
+void PrintRunner::pause(std::int64_t id, Done done) { post({Command::Kind::pause, id, std::move(done)}); }
+void PrintRunner::resume(std::int64_t id, Done done) { post({Command::Kind::resume, id, std::move(done)}); }
+void PrintRunner::abort(std::int64_t id, Done done) { post({Command::Kind::abort, id, std::move(done)}); }
+
+void PrintRunner::estop() {
+    devices_.estop();
+    std::int64_t id = 0;
+    {
+        std::lock_guard lock(mu_);
+        if (active_) id = active_->id;
+    }
+    if (id != 0) {
+        try {
+            store_.request(id, JobAction::abort);
+        } catch (const std::exception& e) {
+            spdlog::warn("print.estop job {}: {}", id, e.what());
+        }
+        abort(id, nullptr);
+    }
+}
+
+std::optional<std::int64_t> PrintRunner::current_job() const {
+    std::lock_guard lock(mu_);
+    if (!active_) return std::nullopt;
+    return active_->id;
+}
+
+json PrintRunner::print_status() const {
+    std::lock_guard lock(mu_);
+    if (!active_) return json::object();
+    json sync = {{"last_confirmed", active_->sync.last_confirmed},
+                 {"faulted", active_->sync.faulted},
+                 {"paused", active_->sync.paused}};
+    if (const auto cut = timing_of(active_->sync, abb::EventKind::cut))
+        sync["cut_error_mm"] = summary_json(cut->position_error_mm);
+    sync::LatencySummary latency;
+    for (const auto& t : active_->sync.stats.timing)
+        if (t.submit_ms.count > latency.count) latency = t.submit_ms;
+    if (latency.count > 0) sync["latency_ms"] = summary_json(latency);
+    return {{"job", active_->id}, {"progress", progress_json()}, {"sync", sync}};
+}
+
+json PrintRunner::progress_json() const {
+    const Active& a = *active_;
+    const auto total = static_cast<std::int64_t>(a.plan.program.events.size());
+    const std::int64_t done = a.last_confirmed.load();
+    const std::int64_t first = a.plan.first_event - 1;  // done before this run
+    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+    const double elapsed = seconds(Clock::now() - a.started);
+    json p = {{"layer", std::max(0, a.layer.load()) + 1},
+              {"layers", a.plan.layers},
+              {"event", done},
+              {"events", total},
+              {"fraction", fraction},
+              {"elapsed_s", elapsed},
+              {"time_scale", devices_.time_scale()}};
+    const double run_fraction =
+        total > first ? static_cast<double>(done - first) / static_cast<double>(total - first) : 0;
+    if (run_fraction > 0.02) p["eta_s"] = elapsed * (1 - run_fraction) / run_fraction;
+    return p;
+}
+
+void PrintRunner::stop() {
+    {
+        std::lock_guard lock(mu_);
+        if (stopping_ && !thread_.joinable()) return;
+        stopping_ = true;
+    }
+    cv_.notify_all();
+    if (thread_.joinable()) thread_.join();
+}
+
+void PrintRunner::run() {
+    std::unique_lock lock(mu_);
+    while (!stopping_) {
+        cv_.wait_for(lock, options_.poll_period, [&] { return stopping_ || !commands_.empty(); });
+        while (!commands_.empty() && !stopping_) {
+            Command c = std::move(commands_.front());
+            commands_.pop_front();
+            lock.unlock();
+            handle(c);
+            lock.lock();
+        }
+        if (stopping_) break;
+        lock.unlock();
+        poll_active();
+        lock.lock();
+    }
+    // Leaving: the print is paused, not aborted, so that the job comes back interrupted.
+    std::unique_ptr<Active> active = std::move(active_);
+    for (Command& c : commands_)
+        if (c.done) c.done("the service is stopping");
+    commands_.clear();
+    lock.unlock();
+    if (active) {
+        spdlog::warn("print.service_stopping job {}: robot paused, job left for resume", active->id);
+        try {
+            active->session->pause();
+        } catch (const std::exception&) {
+        }
+        devices_.set_print(nullptr);
+    }
+}
+
+void PrintRunner::handle(Command& c) {
+    std::string error;
+    try {
+        std::unique_lock lock(mu_);
+        const bool mine = active_ && active_->id == c.id;
+        lock.unlock();
+        switch (c.kind) {
+            case Command::Kind::start: start_job(c.id); break;
+            case Command::Kind::pause:
+                if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
+                active_->session->pause();
+                // The robot brakes on the pause request: paused once it stands (or after 2 s).
+                {
+                    const auto deadline = Clock::now() + std::chrono::seconds(2);
+                    while (devices_.robot_io().snapshot().running && Clock::now() < deadline)
+                        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                }
+                active_->paused_since = Clock::now();
+                store_.apply(c.id, JobAction::pause_done);
+                break;
+            case Command::Kind::resume:
+                if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
+                try {
+                    if (active_->heaters_off) {
+                        auto heat = devices_.board().submit(devices_.extruder().prepare(true));
+                        if (heat.wait_for(std::chrono::minutes(10)) != std::future_status::ready ||
+                            !heat.get().ok())
+                            throw print::PrintError("resume: re-heating failed");
+                        active_->heaters_off = false;
+                    }
+                    active_->session->resume();
+                    active_->paused_since.reset();
+                    active_->fault_reported = false;
+                } catch (const std::exception& e) {
+                    store_.apply(c.id, JobAction::faulted, e.what());
+                    throw;
+                }
+                break;
+            case Command::Kind::abort:
+                if (mine) {
+                    active_->session->abort();
+                    finish("aborted by the operator");
+                }
+                break;
+        }
+    } catch (const std::exception& e) {
+        error = e.what();
+        spdlog::error("print.command job {}: {}", c.id, error);
+    }
+    if (c.done) c.done(error);
+}
+
+void PrintRunner::start_job(std::int64_t id) {
+    auto refuse = [&](const std::string& why) {
+        spdlog::error("print.start_refused job {}: {}", id, why);
+        store_.apply(id, JobAction::start_refused, why);
+        throw std::runtime_error(why);
+    };
+    {
+        std::lock_guard lock(mu_);
+        if (active_) refuse("job " + std::to_string(active_->id) + " is on the cell");
+    }
+    const jobs::JobRecord record = store_.get(id);
+    auto a = std::make_unique<Active>();
+    a->id = id;
+    const bool resuming = record.last_confirmed_event > 0;
+    try {
+        a->plan = load_print_plan(store_.input_dir(id) / jobs::job_yaml_name, store_.plan_dir(id),
+                                  cell_.robot,
+                                  resuming ? std::optional(record.last_confirmed_event) : std::nullopt);
+    } catch (const std::exception& e) {
+        refuse(std::string("cannot load the plan: ") + e.what());
+    }
+    try {
+        devices_.connect(options_.connect_timeout);
+    } catch (const std::exception& e) {
+        refuse(e.what());
+    }
+    a->journal = store_.journal(id);
+    a->last_confirmed = a->plan.first_event - 1;
+    if (resuming) a->journal->resumed(a->plan.first_event);
+
+    print::PrintOptions po;
+    po.job_dir = cell_.rws.job_dir;
+    // Real seconds (the simulated controller converts to its own time, docs/simcell.md).
+    po.heartbeat_timeout_s = std::chrono::duration<double>(options_.heartbeat_timeout).count();
+    po.signals = cell_.robot.signals.all();
+    po.sync.pla_line_width_mm = a->plan.job.process.pla.line_width_mm;
+    po.sync.pla_layer_height_mm = a->plan.job.layers.pla_layer_height_mm;
+    po.sync.time_scale = devices_.time_scale();
+    po.sync.first_event = a->plan.first_event;
+    po.sync.skip_events = a->plan.skip_events;
+    if (a->plan.resume && !a->plan.resume->nothing_left)
+        po.resume_tool = a->plan.resume->nozzle == abb::Nozzle::pla ? drivers::Head::pla
+                                                                    : drivers::Head::ccf;
+    a->session = std::make_unique<print::PrintSession>(a->plan.program, a->plan.chunks,
+                                                       devices_.links(), po);
+    Active* raw = a.get();
+    a->session->on_event_done([raw](const sync::EventDone& d) {
+        // On the engine's thread, in order: on the disk before the next event is taken.
+        raw->journal->confirmed({d.sequence, d.kind, d.layer, d.path});
+        raw->last_confirmed = d.sequence;
+        if (d.layer >= 0) raw->layer = d.layer;
+    });
+    devices_.set_print(a->session.get());
+    try {
+        a->session->start();
+    } catch (const std::exception& e) {
+        devices_.set_print(nullptr);
+        refuse(e.what());
+    }
+    spdlog::info("print.started job {} first_event={} events={} chunks={}", id, a->plan.first_event,
+                 a->plan.program.events.size(), a->plan.chunks.size());
+    {
+        std::lock_guard lock(mu_);
+        active_ = std::move(a);
+    }
+    store_.apply(id, JobAction::print_started);
+}
+
+void PrintRunner::poll_active() {
+    std::unique_lock lock(mu_);
+    if (!active_) return;
+    Active& a = *active_;
+    lock.unlock();
+    const print::PrintStatus st = a.session->poll();
+    lock.lock();
+    a.sync = st.sync;
+    const json progress = progress_json();
+    lock.unlock();
+    if (on_progress_) on_progress_(a.id, progress);
+
+    switch (st.phase) {
+        case print::PrintPhase::completed: {
+            store_.apply(a.id, JobAction::print_done);
+            finish("");
+            return;
+        }
+        case print::PrintPhase::faulted:
+            if (!a.fault_reported) {
+                a.fault_reported = true;
+                a.paused_since = Clock::now();
+                spdlog::error("print.fault job {}: {}", a.id, st.reason);
+                store_.apply(a.id, JobAction::faulted, st.reason);
+            }
+            break;
+        default: break;
+    }
+    // A long pause: the heaters go off (the resume heats them first).
+    if (a.paused_since && !a.heaters_off && Clock::now() - *a.paused_since > options_.heater_timeout) {
+        spdlog::warn("print.heaters_off job {} paused for {} s", a.id,
+                     std::chrono::duration_cast<std::chrono::seconds>(options_.heater_timeout).count());
+        const auto& x = devices_.extruder().config();
+        devices_.board().submit({"M104 T" + std::to_string(x.pla_tool) + " S0",
+                                 "M104 T" + std::to_string(x.ccf_tool) + " S0"});
+        a.heaters_off = true;
+    }
+}
+
+// The print ended (completed or aborted): its figures go to result.json beside state.json.
+void PrintRunner::finish(const std::string& outcome_reason) {
+    std::unique_ptr<Active> a;
+    {
+        std::lock_guard lock(mu_);
+        a = std::move(active_);
+    }
+    if (!a) return;
+    devices_.set_print(nullptr);
+    const print::PrintStatus st = a->session->poll();
+    const double elapsed = seconds(Clock::now() - a->started);
+    json result = {{"elapsed_s", elapsed},
+                   {"robot_time_s", elapsed * devices_.time_scale()},
+                   {"time_scale", devices_.time_scale()},
+                   {"events_done", a->last_confirmed.load()},
+                   {"events", a->plan.program.events.size()},
+                   {"first_event", a->plan.first_event}};
+    if (!outcome_reason.empty()) result["reason"] = outcome_reason;
+    if (const auto cut = timing_of(st.sync, abb::EventKind::cut))
+        result["cut_error_mm"] = summary_json(cut->position_error_mm);
+    std::ofstream(store_.job_dir(a->id) / "result.json") << result.dump(2) << "\n";
+    spdlog::info("print.finished job {} {}", a->id, result.dump());
+    a->session.reset();
+}
+
+}  // namespace fibrecell::daemon::service

@@ -1,0 +1,108 @@
+#pragma once
+// Prints jobs on the cell, one at a time, on its own thread (docs/service.md): pre-flight and the
+// start of a job, then the print's progress, pause, resume, abort and end, each reflected in the
+// job store through its transition table and in the job's journal.
+//
+//   start(id):  job starting -> the plan is loaded (or re-entered after an interruption), the
+//               devices connected, PrintSession::start (chunks checked and uploaded, heat-up,
+//               FcMain's run) -> printing; a refused start -> back to planned (or interrupted)
+//               with the reason, nothing moved.
+//   while printing: the engine's confirmed events are journaled (fsync) as they come, progress is
+//               reported, a device fault makes the job paused with the reason (the cell is safe:
+//               robot held, feed stopped, heaters on) until the operator resumes or aborts.
+//   the heaters of a paused job are switched off after `heater_timeout` (the resume re-heats).
+//
+// Commands come from the API's threads and return at once; their outcome is reported through the
+// callback (the job's transition, or the reason it could not be done).
+
+#include "daemon/cell_config.hpp"
+#include "daemon/jobs/job_store.hpp"
+#include "daemon/print/print_session.hpp"
+#include "daemon/service/cell_devices.hpp"
+#include "daemon/service/print_plan.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+namespace fibrecell::daemon::service {
+
+struct PrintRunnerOptions {
+    std::chrono::milliseconds connect_timeout{10000};  // devices up at a start
+    std::chrono::milliseconds heartbeat_timeout{1000}; // real time: FcMain holds the robot after it
+    std::chrono::milliseconds heater_timeout{std::chrono::minutes(30)};  // paused: heaters off
+    std::chrono::milliseconds poll_period{100};
+};
+
+class PrintRunner {
+  public:
+    // What a command's caller hears: empty on success, else why it could not be done.
+    using Done = std::function<void(const std::string& error)>;
+
+    PrintRunner(jobs::JobStore& store, CellDevices& devices, const CellConfig& cell,
+                PrintRunnerOptions options = {});
+    ~PrintRunner();  // stop()
+    PrintRunner(const PrintRunner&) = delete;
+    PrintRunner& operator=(const PrintRunner&) = delete;
+
+    // Progress of the job printing (about every poll period; the API rate-limits).
+    void on_progress(std::function<void(std::int64_t id, const nlohmann::json& print)> f);
+
+    // The job was moved to starting by the store (job.start or job.resume of an interrupted
+    // job); the runner takes it from there.
+    void start(std::int64_t id, Done done);
+    // The job is pausing / was resumed / was aborted in the store; the runner acts on the cell.
+    void pause(std::int64_t id, Done done);
+    void resume(std::int64_t id, Done done);
+    void abort(std::int64_t id, Done done);
+    // M112 and the robot's abort request at once; a running print is aborted.
+    void estop();
+
+    // The job on the cell and its print progress; nullopt when none.
+    std::optional<std::int64_t> current_job() const;
+    nlohmann::json print_status() const;  // {"job", "progress", "sync"} or {}
+
+    // Service stopping: a running print is paused (robot stopped, feed stopped) so that the job
+    // comes back interrupted and resumable; joins the thread.
+    void stop();
+
+  private:
+    struct Command {
+        enum class Kind { start, pause, resume, abort } kind;
+        std::int64_t id;
+        Done done;
+    };
+    struct Active;
+
+    void post(Command c);
+    void run();
+    void handle(Command& c);
+    void start_job(std::int64_t id);
+    void poll_active();
+    void finish(const std::string& outcome_reason);
+    nlohmann::json progress_json() const;  // lock held
+
+    jobs::JobStore& store_;
+    CellDevices& devices_;
+    CellConfig cell_;
+    PrintRunnerOptions options_;
+    std::function<void(std::int64_t, const nlohmann::json&)> on_progress_;
+
+    mutable std::mutex mu_;
+    std::condition_variable cv_;
+    std::deque<Command> commands_;
+    std::unique_ptr<Active> active_;
+    bool stopping_ = false;
+    std::thread thread_;  // last
+};
+
+}  // namespace fibrecell::daemon::service

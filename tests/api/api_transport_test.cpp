@@ -1,0 +1,322 @@
+// The socket API's transports on real sockets: the Unix socket file (mode, group, stale and live
+// sockets), the client's one-line errors, TCP with its token, and the client limit.
+#include "daemon/api/api_client.hpp"
+#include "daemon/api/api_server.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/asio/executor_work_guard.hpp>
+
+#include <grp.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+using namespace fibrecell::api;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+namespace {
+
+const std::string kToken = "s3cret-token-0123456789";
+
+std::filesystem::path temp_dir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "api-tr-XXXXXX").string();
+    return mkdtemp(tmpl.data());
+}
+
+std::string client_error(const ApiEndpoint& endpoint) {
+    try {
+        ApiClient::connect(endpoint);
+    } catch (const ApiClientError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+class ApiTransportTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = temp_dir();
+        config_.socket_path = (dir_ / "api.sock").string();
+        config_.tcp.token = kToken;
+        config_.tcp.port = 0;  // ephemeral
+    }
+    void TearDown() override {
+        stop_io();
+        server_.reset();
+        std::filesystem::remove_all(dir_);
+    }
+    void start(bool run_io = true) {
+        server_ = std::make_unique<ApiServer>(io_, config_);
+        server_->add_method("echo", [](const json& params, const CallContext&) { return params; });
+        server_->add_method("whoami", [](const json&, const CallContext& ctx) {
+            return json{{"tcp", ctx.transport == Transport::tcp}, {"peer", ctx.peer}};
+        });
+        server_->start();
+        if (run_io) io_thread_ = std::thread([this] { io_.run(); });
+    }
+    void stop_io() {
+        work_.reset();
+        io_.stop();
+        if (io_thread_.joinable()) io_thread_.join();
+    }
+    ApiEndpoint tcp(const std::string& token) const {
+        return {.host = "127.0.0.1", .port = server_->tcp_port(), .token = token};
+    }
+
+    std::filesystem::path dir_;
+    ApiConfig config_;
+    boost::asio::io_context io_;
+    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
+        boost::asio::make_work_guard(io_);
+    std::unique_ptr<ApiServer> server_;
+    std::thread io_thread_;
+};
+
+// A socket file nobody listens on, as a crashed service leaves behind.
+void make_stale_socket(const std::string& path) {
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::strcpy(addr.sun_path, path.c_str());
+    ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    ::close(fd);
+}
+
+}  // namespace
+
+TEST_F(ApiTransportTest, SocketFileGetsTheConfiguredModeAndGroup) {
+    config_.socket_mode = 0640;
+    config_.socket_group = "65534";
+    start();
+    struct stat st {};
+    ASSERT_EQ(::lstat(config_.socket_path.c_str(), &st), 0);
+    EXPECT_TRUE(S_ISSOCK(st.st_mode));
+    EXPECT_EQ(st.st_mode & 07777, 0640u);
+    EXPECT_EQ(st.st_gid, 65534u);
+    auto c = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(c.call("whoami")["tcp"], false);
+    EXPECT_NE(c.call("whoami")["peer"].get<std::string>().find("unix uid="), std::string::npos);
+}
+
+TEST_F(ApiTransportTest, StaleSocketFromADeadProcessIsReplaced) {
+    make_stale_socket(config_.socket_path);
+    EXPECT_EQ(client_error({.socket_path = config_.socket_path}),
+              "fibrecelld is not running (stale socket at " + config_.socket_path + ")");
+    start();
+    auto c = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(c.call("echo", {{"x", 1}}), (json{{"x", 1}}));
+}
+
+TEST_F(ApiTransportTest, LiveSocketIsRefusedAndKeepsServing) {
+    start();
+    boost::asio::io_context other_io;
+    ApiServer second(other_io, config_);
+    try {
+        second.start();
+        FAIL() << "a second server started on a live socket";
+    } catch (const ApiStartError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "another fibrecelld is listening on " + config_.socket_path);
+    }
+    auto c = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(c.call("echo", {{"still", 1}}), (json{{"still", 1}}));
+}
+
+TEST_F(ApiTransportTest, AFileThatIsNotASocketIsLeftAlone) {
+    std::ofstream(config_.socket_path) << "precious\n";
+    try {
+        start();
+        FAIL() << "started over a regular file";
+    } catch (const ApiStartError& e) {
+        EXPECT_EQ(
+            std::string(e.what()),
+            config_.socket_path + " exists and is not a socket; remove it or choose another path");
+    }
+    std::ifstream in(config_.socket_path);
+    std::string text;
+    std::getline(in, text);
+    EXPECT_EQ(text, "precious");
+}
+
+TEST_F(ApiTransportTest, MissingDirectoryIsAClearStartError) {
+    config_.socket_path = (dir_ / "nope" / "api.sock").string();
+    try {
+        start();
+        FAIL() << "started without a directory";
+    } catch (const ApiStartError& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot create socket " + config_.socket_path +
+                                             ": directory " + (dir_ / "nope").string() +
+                                             " does not exist");
+    }
+}
+
+TEST_F(ApiTransportTest, SocketFileIsRemovedOnStopUnlessReplaced) {
+    start();
+    stop_io();
+    server_.reset();
+    EXPECT_FALSE(std::filesystem::exists(config_.socket_path));
+    // A successor's socket at the same path survives our late shutdown.
+    start(false);
+    std::filesystem::remove(config_.socket_path);
+    make_stale_socket(config_.socket_path);
+    server_.reset();
+    EXPECT_TRUE(std::filesystem::exists(config_.socket_path));
+}
+
+TEST_F(ApiTransportTest, ClientSaysWhenTheServiceIsNotRunning) {
+    EXPECT_EQ(client_error({.socket_path = config_.socket_path}),
+              "fibrecelld is not running (no socket at " + config_.socket_path + ")");
+    EXPECT_EQ(
+        client_error({.socket_path = (dir_ / "nodir" / "x.sock").string()}),
+        "fibrecelld is not running (no socket at " + (dir_ / "nodir" / "x.sock").string() + ")");
+    EXPECT_EQ(client_error({.host = "127.0.0.1", .port = 1, .token = kToken}),
+              "fibrecelld is not listening on 127.0.0.1:1");
+}
+
+TEST_F(ApiTransportTest, ClientSaysPermissionDenied) {
+    // Root passes every mode check, so the client runs in a child as nobody; otherwise mode 0
+    // shuts out even the owner. The io thread is not started: fork() sees one thread, and the
+    // kernel decides before any accept.
+    const bool root = ::geteuid() == 0;
+    config_.socket_mode = root ? 0600 : 0;
+    std::filesystem::permissions(dir_, std::filesystem::perms(0711));  // searchable for nobody
+    start(false);
+    const std::string expected = "permission denied on " + config_.socket_path;
+    if (!root) {
+        EXPECT_EQ(client_error({.socket_path = config_.socket_path}), expected);
+        return;
+    }
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        if (::setgroups(0, nullptr) != 0 || ::setgid(65534) != 0 || ::setuid(65534) != 0) _exit(3);
+        _exit(client_error({.socket_path = config_.socket_path}) == expected ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: another message, 3: could not become nobody";
+}
+
+TEST_F(ApiTransportTest, TcpWithTheRightTokenWorks) {
+    config_.tcp.enabled = true;
+    start();
+    ASSERT_NE(server_->tcp_port(), 0);
+    auto c = ApiClient::connect(tcp(kToken));
+    const json who = c.call("whoami");
+    EXPECT_EQ(who["tcp"], true);
+    EXPECT_NE(who["peer"].get<std::string>().find("tcp 127.0.0.1:"), std::string::npos);
+    EXPECT_EQ(c.call("echo", {{"x", 2}}), (json{{"x", 2}}));
+}
+
+TEST_F(ApiTransportTest, TcpWithoutTokenIsUnauthorizedUntilAuth) {
+    config_.tcp.enabled = true;
+    start();
+    auto c = ApiClient::connect(tcp(""));  // connects, does not authenticate
+    try {
+        c.call("echo");
+        FAIL() << "answered without a token";
+    } catch (const ApiCallError& e) {
+        EXPECT_EQ(e.code(), errc::unauthorized);
+        EXPECT_STREQ(e.what(),
+                     "unauthorized: the first call on a TCP connection must be server.auth "
+                     "{\"token\": ...}");
+    }
+    try {
+        c.call("subscribe");
+        FAIL() << "subscribed without a token";
+    } catch (const ApiCallError& e) {
+        EXPECT_EQ(e.code(), errc::unauthorized);
+    }
+    EXPECT_EQ(c.call("server.auth", {{"token", kToken}}), (json{{"authenticated", true}}));
+    EXPECT_EQ(c.call("echo", {{"x", 3}}), (json{{"x", 3}}));
+}
+
+TEST_F(ApiTransportTest, TcpWithAWrongTokenIsRefusedAndClosed) {
+    config_.tcp.enabled = true;
+    start();
+    try {
+        ApiClient::connect(tcp("wrong-token-wrong-token"));
+        FAIL() << "a wrong token was accepted";
+    } catch (const ApiCallError& e) {
+        EXPECT_EQ(e.code(), -32001);
+        EXPECT_STREQ(e.what(), "unauthorized: wrong token");
+    }
+    auto c = ApiClient::connect(tcp(""));
+    c.send_line(R"({"jsonrpc":"2.0","id":1,"method":"server.auth","params":{"token":"x"}})"
+                "\n"
+                R"({"jsonrpc":"2.0","id":2,"method":"echo"})");
+    const auto m = c.read_message(5s);
+    ASSERT_TRUE(m);
+    EXPECT_EQ((*m)["error"]["code"], errc::unauthorized);
+    EXPECT_TRUE(c.wait_closed(5s));  // the pipelined call after it was never run
+    EXPECT_EQ(server_->stats().auth_failures, 2u);
+}
+
+TEST_F(ApiTransportTest, TcpConnectionThatNeverAuthenticatesIsClosed) {
+    config_.tcp.enabled = true;
+    config_.tcp.auth_timeout = 100ms;
+    start();
+    auto c = ApiClient::connect(tcp(""));
+    const auto m = c.read_message(5s);
+    ASSERT_TRUE(m);
+    EXPECT_EQ((*m)["error"]["code"], errc::unauthorized);
+    EXPECT_EQ((*m)["error"]["message"], "unauthorized: no server.auth within 100 ms");
+    EXPECT_TRUE(c.wait_closed(5s));
+}
+
+TEST_F(ApiTransportTest, AReloadedTokenAppliesToNewConnections) {
+    config_.tcp.enabled = true;
+    start();
+    auto before = ApiClient::connect(tcp(kToken));
+    ApiConfig reloaded = config_;
+    reloaded.tcp.token = "another-token-0123456789";
+    server_->update_limits(reloaded);
+    EXPECT_EQ(before.call("echo", {{"x", 1}}), (json{{"x", 1}}));  // stays authenticated
+    EXPECT_THROW(ApiClient::connect(tcp(kToken)), ApiCallError);
+    auto after = ApiClient::connect(tcp(reloaded.tcp.token));
+    EXPECT_EQ(after.call("echo", {{"x", 2}}), (json{{"x", 2}}));
+}
+
+TEST_F(ApiTransportTest, StopClosesClientsAndRemovesTheSocket) {
+    start();
+    auto c = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(c.call("echo", {{"x", 1}}), (json{{"x", 1}}));
+    server_->stop();
+    EXPECT_TRUE(c.wait_closed(5s));
+    EXPECT_FALSE(std::filesystem::exists(config_.socket_path));
+    EXPECT_EQ(client_error({.socket_path = config_.socket_path}),
+              "fibrecelld is not running (no socket at " + config_.socket_path + ")");
+}
+
+TEST_F(ApiTransportTest, TcpIsOffByDefault) {
+    start();
+    EXPECT_EQ(server_->tcp_port(), 0);
+}
+
+TEST_F(ApiTransportTest, ClientsAboveTheLimitAreRefusedWithUnavailable) {
+    config_.max_clients = 1;
+    start();
+    auto first = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(first.call("echo", {{"n", 1}}), (json{{"n", 1}}));
+    auto second = ApiClient::connect({.socket_path = config_.socket_path});
+    try {
+        second.call("echo");
+        FAIL() << "a client above the limit was served";
+    } catch (const ApiCallError& e) {
+        EXPECT_EQ(e.code(), errc::unavailable);
+        EXPECT_STREQ(e.what(),
+                     "unavailable: fibrecelld serves at most 1 clients at once (api.max_clients)");
+    }
+    EXPECT_EQ(first.call("echo", {{"n", 2}}), (json{{"n", 2}}));
+    EXPECT_EQ(server_->stats().refused_full, 1u);
+}

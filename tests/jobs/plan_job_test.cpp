@@ -1,0 +1,142 @@
+// plan_job, the one planning path of the service and the offline CLI, on a small bar in uniform
+// tension: the plan directory, progress per stage, cancel, the field stage alone, and
+// `fibrecell plan` writing the same toolpaths as the library.
+#include "daemon/jobs/plan_job.hpp"
+
+#include "planner/io/vtk_writer.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+#include "planner/plan/toolpaths_json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+using namespace fibrecell;
+using namespace fibrecell::daemon::jobs;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_file(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class PlanJobTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("fibrecell-planjob-" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        // 50 x 6 x 0.8 mm bar pulled along x: one PLA and one CCF layer of straight fibres.
+        const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 0.8}, .cells = {25, 3, 1}});
+        std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
+        for (auto& s : stress) s(0, 0) = 30.0;
+        planner::write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
+        std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    PlanRequest request(const std::string& out) const {
+        PlanRequest r{.job_file = dir_ / "bar.job.yaml", .out_dir = dir_ / out};
+        r.threads = 1;
+        return r;
+    }
+
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(PlanJobTest, WritesThePlanDirectoryWithProgressPerStage) {
+    std::vector<std::string> stages;
+    std::string named;
+    const PlanJobResult r = plan_job(request("plan"),
+                                     {[&](std::string_view stage, double) {
+                                          if (stages.empty() || stages.back() != stage)
+                                              stages.emplace_back(stage);
+                                      },
+                                      nullptr},
+                                     [&](const planner::JobSpec& job) { named = job.name; });
+    EXPECT_EQ(named, "bar");
+    ASSERT_GE(stages.size(), 4u);
+    EXPECT_EQ(stages.front(), "read");
+    EXPECT_NE(std::find(stages.begin(), stages.end(), "layers"), stages.end());
+    EXPECT_EQ(stages[stages.size() - 2], "write");
+    EXPECT_EQ(stages.back(), "robot");
+
+    const fs::path out = dir_ / "plan";
+    for (const char* f : {"field.vtk", "toolpaths.json", "report.json", "preview/index.html",
+                          "rapid/FcChunk0001.mod"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    const auto report = nlohmann::json::parse(read_file(out / "report.json"));
+    EXPECT_EQ(report, r.report);
+    EXPECT_EQ(report["layers"]["pla"], 1);
+    EXPECT_EQ(report["layers"]["ccf"], 1);
+    EXPECT_GT(report["fibre"]["paths"].get<int>(), 0);
+    EXPECT_GE(report["robot"]["modules"].get<int>(), 1);
+    ASSERT_TRUE(r.robot);
+    EXPECT_EQ(report["robot"]["moves"].get<std::size_t>(), r.robot->program.moves.size());
+    EXPECT_EQ(planner::read_toolpaths_json((out / "toolpaths.json").string()).layers.size(), 2u);
+}
+
+TEST_F(PlanJobTest, CancelStopsThePlanAndWritesNoReport) {
+    planner::CancelToken cancel;
+    const planner::StepControl control{[&](std::string_view stage, double) {
+                                           if (stage == "layers") cancel.cancel();
+                                       },
+                                       &cancel};
+    EXPECT_THROW(plan_job(request("plan"), control), planner::Cancelled);
+    EXPECT_FALSE(fs::exists(dir_ / "plan" / "report.json"));
+    EXPECT_FALSE(fs::exists(dir_ / "plan" / "rapid"));
+}
+
+TEST_F(PlanJobTest, FieldStageAloneAndBadJobsFailWithTheirReason) {
+    PlanRequest r = request("field");
+    r.last_stage = PlanStage::field;
+    r.strategy = planner::Strategy::contour_zigzag;
+    const PlanJobResult p = plan_job(r);
+    EXPECT_EQ(p.job.planner.strategy, planner::Strategy::contour_zigzag);
+    EXPECT_FALSE(p.layers);
+    EXPECT_FALSE(p.robot);
+    EXPECT_TRUE(fs::exists(dir_ / "field" / "field.vtk"));
+    EXPECT_TRUE(fs::exists(dir_ / "field" / "report.json"));
+    EXPECT_FALSE(fs::exists(dir_ / "field" / "toolpaths.json"));
+
+    std::ofstream(dir_ / "bad.job.yaml") << "name: bad\nmodel:\n  mesh: missing.vtk\n";
+    PlanRequest bad = request("bad");
+    bad.job_file = dir_ / "bad.job.yaml";
+    try {
+        plan_job(bad);
+        FAIL() << "expected an error";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("model.mesh: file not found"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
+TEST_F(PlanJobTest, CommandLineWritesWhatTheLibraryWrites) {
+    plan_job(request("library"));
+    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+                            (dir_ / "bar.job.yaml").string() + " --threads 1 --out " +
+                            (dir_ / "cli").string() + " > " + (dir_ / "stdout.txt").string() +
+                            " 2> " + (dir_ / "stderr.txt").string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir_ / "stderr.txt");
+    EXPECT_EQ(read_file(dir_ / "cli" / "toolpaths.json"),
+              read_file(dir_ / "library" / "toolpaths.json"));
+    EXPECT_EQ(read_file(dir_ / "cli" / "rapid" / "FcChunk0001.mod"),
+              read_file(dir_ / "library" / "rapid" / "FcChunk0001.mod"));
+    const std::string out = read_file(dir_ / "stdout.txt");
+    for (const char* line :
+         {"model      450 tets", "layers     1 PLA + 1 CCF", "robot      ", "wrote      "})
+        EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
+    EXPECT_EQ(read_file(dir_ / "stderr.txt").rfind("planning bar (", 0), 0u);
+}

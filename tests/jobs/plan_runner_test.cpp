@@ -1,0 +1,194 @@
+// Planning workers on a real job store: a submitted job is planned with progress, a job that
+// cannot be planned fails with its reason while another plans fine, abort cancels a running or a
+// queued plan, and a shutdown leaves the job to be planned again after the restart.
+#include "daemon/jobs/plan_runner.hpp"
+
+#include "planner/io/vtk_writer.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <future>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+using namespace fibrecell;
+using namespace fibrecell::daemon::jobs;
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_file(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class PlanRunnerTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("fibrecell-planrunner-" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        // 50 x 6 x 0.8 mm bar pulled along x; the same mesh without stress cannot be planned.
+        const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 0.8}, .cells = {25, 3, 1}});
+        std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
+        for (auto& s : stress) s(0, 0) = 30.0;
+        planner::write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
+        planner::write_field_vtk((dir_ / "bare.vtk").string(), mesh, {});
+        bar_.job_yaml = "name: bar\nmodel:\n  mesh: bar.vtk\n";
+        bar_.files = {{"bar.vtk", read_file(dir_ / "bar.vtk")}};
+        broken_.job_yaml = "name: broken\nmodel:\n  mesh: bare.vtk\n";
+        broken_.files = {{"bare.vtk", read_file(dir_ / "bare.vtk")}};
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    JobStoreOptions options() const { return {.state_dir = dir_ / "state"}; }
+    PlanRunnerOptions runner_options(int workers) const {
+        PlanRunnerOptions o;
+        o.workers = workers;
+        o.planner_threads = 1;
+        return o;
+    }
+
+    fs::path dir_;
+    JobInput bar_, broken_;
+};
+
+}  // namespace
+
+TEST_F(PlanRunnerTest, PlansASubmittedJobWithProgress) {
+    JobStore store(options());
+    store.load_all();
+    PlanRunner runner(store, runner_options(1));
+    std::mutex mu;
+    std::vector<std::string> stages;
+    std::vector<JobRecord> finished;
+    runner.on_progress([&](std::int64_t id, const JobProgress& p) {
+        std::lock_guard lock(mu);
+        EXPECT_EQ(id, 1);
+        EXPECT_GE(p.fraction, 0.0);
+        EXPECT_LE(p.fraction, 1.0);
+        if (stages.empty() || stages.back() != p.stage) stages.push_back(p.stage);
+    });
+    runner.on_finished([&](const JobRecord& r) {
+        std::lock_guard lock(mu);
+        finished.push_back(r);
+    });
+    runner.enqueue(store.submit(bar_).id);
+    runner.wait_idle();
+    const JobRecord r = store.get(1);
+    EXPECT_EQ(r.state, JobState::planned);
+    EXPECT_EQ(r.plan_attempts, 1);
+    EXPECT_TRUE(r.progress.stage.empty());
+    EXPECT_TRUE(fs::exists(store.plan_dir(1) / "report.json"));
+    EXPECT_TRUE(fs::exists(store.plan_dir(1) / "rapid" / "FcChunk0001.mod"));
+    std::lock_guard lock(mu);
+    ASSERT_GE(stages.size(), 4u);
+    EXPECT_EQ(stages.front(), "read");
+    EXPECT_EQ(stages.back(), "robot");
+    ASSERT_EQ(finished.size(), 1u);
+    EXPECT_EQ(finished[0].state, JobState::planned);
+}
+
+TEST_F(PlanRunnerTest, FailedPlanMarksThatJobFailedWhileAnotherPlans) {
+    JobStore store(options());
+    store.load_all();
+    PlanRunner runner(store, runner_options(2));
+    const auto broken = store.submit(broken_).id;
+    const auto good = store.submit(bar_).id;
+    runner.enqueue(broken);
+    runner.enqueue(good);
+    runner.wait_idle();
+    const JobRecord b = store.get(broken);
+    EXPECT_EQ(b.state, JobState::failed);
+    EXPECT_THAT(b.reason, HasSubstr("carries no stress field"));
+    const auto disk = nlohmann::json::parse(read_file(store.job_dir(broken) / "state.json"));
+    EXPECT_EQ(disk["state"], "failed");
+    EXPECT_EQ(disk["reason"], b.reason);
+    EXPECT_FALSE(fs::exists(store.plan_dir(broken) / "report.json"));
+    EXPECT_EQ(store.get(good).state, JobState::planned);
+    EXPECT_TRUE(fs::exists(store.plan_dir(good) / "report.json"));
+}
+
+TEST_F(PlanRunnerTest, AbortCancelsTheRunningPlanAndTheNextJobPlans) {
+    JobStore store(options());
+    store.load_all();
+    PlanRunner runner(store, runner_options(1));
+    std::once_flag once;
+    runner.on_progress([&](std::int64_t id, const JobProgress&) {
+        if (id == 1) std::call_once(once, [&] { runner.abort(1); });  // mid-plan, from the sink
+    });
+    runner.enqueue(store.submit(bar_).id);
+    runner.enqueue(store.submit(bar_).id);
+    runner.wait_idle();
+    EXPECT_EQ(store.get(1).state, JobState::aborted);
+    EXPECT_EQ(store.get(1).reason, "aborted by the operator");
+    EXPECT_FALSE(fs::exists(store.plan_dir(1) / "report.json"));
+    EXPECT_EQ(store.get(2).state, JobState::planned);
+    // Aborting again is a conflict with the reason.
+    try {
+        runner.abort(1);
+        FAIL();
+    } catch (const JobConflict& e) {
+        EXPECT_STREQ(e.what(), "job 1 is aborted: it has ended already");
+    }
+}
+
+TEST_F(PlanRunnerTest, AbortedQueuedJobIsNeverPlanned) {
+    JobStore store(options());
+    store.load_all();
+    std::promise<void> first_started;
+    std::promise<void> release;
+    std::shared_future<void> released = release.get_future().share();
+    std::once_flag once;
+    PlanRunner runner(store, runner_options(1));
+    runner.on_progress([&](std::int64_t id, const JobProgress&) {
+        if (id != 1) return;
+        std::call_once(once, [&] {
+            first_started.set_value();
+            released.wait();  // the only worker stays on job 1 while job 2 waits
+        });
+    });
+    runner.enqueue(store.submit(bar_).id);
+    runner.enqueue(store.submit(bar_).id);
+    first_started.get_future().wait();
+    EXPECT_EQ(store.get(2).progress.stage, "queued");
+    runner.abort(2);
+    release.set_value();
+    runner.wait_idle();
+    EXPECT_EQ(store.get(1).state, JobState::planned);
+    EXPECT_EQ(store.get(2).state, JobState::aborted);
+    EXPECT_EQ(store.get(2).plan_attempts, 0);
+}
+
+TEST_F(PlanRunnerTest, ShutdownLeavesThePlanForTheNextStart) {
+    {
+        JobStore store(options());
+        store.load_all();
+        std::promise<void> started;
+        std::once_flag once;
+        PlanRunner runner(store, runner_options(1));
+        runner.on_progress([&](std::int64_t, const JobProgress&) {
+            std::call_once(once, [&] { started.set_value(); });
+        });
+        runner.enqueue(store.submit(bar_).id);
+        started.get_future().wait();
+        runner.stop();
+        EXPECT_EQ(store.get(1).state, JobState::planning);
+        EXPECT_EQ(store.get(1).plan_attempts, 0);  // not counted against plan_retries
+    }
+    JobStore store(options());
+    EXPECT_EQ(store.load_all().to_plan, std::vector<std::int64_t>{1});
+    PlanRunner runner(store, runner_options(1));
+    runner.enqueue(1);
+    runner.wait_idle();
+    EXPECT_EQ(store.get(1).state, JobState::planned);
+}

@@ -1,0 +1,198 @@
+// Printing end to end in simulation, every driver real (print_cell_fixture.hpp): a small job's
+// exact board log and where the cuts and PLA extrusion happened along the robot's recorded path;
+// a pause in the middle of a fibre path; the Modbus link dropped mid-print and the job resumed;
+// 1% corrupted serial lines; a chunk that does not build, refused before anything moves.
+#include "print_cell_fixture.hpp"
+
+#include <gmock/gmock.h>
+
+using namespace fibrecell;
+using namespace fibrecell::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+// PLA square, two fibre lines, PLA square, two fibre lines: 4 cuts, 2 PLA paths.
+abb::PrintProgram four_cut_program() {
+    return make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 2), pla_square(2, 1.65),
+                         fibre_lines(3, 1.7, 2)});
+}
+
+// The fibre's G1 E pieces of the job's first fibre path: between its threading M400 (the first
+// M400 of the job) and its cut's.
+std::vector<std::string> first_fibre_pieces(const std::vector<std::string>& log) {
+    const auto thread_end = std::find(log.begin(), log.end(), "M400");
+    const auto cut_start = std::find(thread_end == log.end() ? log.end() : thread_end + 1, log.end(), "M400");
+    std::vector<std::string> out;
+    for (auto it = thread_end; it != cut_start && it != log.end(); ++it)
+        if (it->rfind("G1 E", 0) == 0) out.push_back(*it);
+    return out;
+}
+
+std::string describe(const std::vector<double>& v) {
+    std::string s;
+    for (double x : v) s += (s.empty() ? "" : " ") + std::to_string(x);
+    return s;
+}
+
+}  // namespace
+
+// Positions at time scale 5: the service's real-time latency (a few ms) then moves the robot a
+// fifth as far as at 20, as it would on a loaded real cell's 5x faster robot.
+class PrintPositionTest : public PrintCellTest {
+  protected:
+    PrintPositionTest() { scale_ = 2; }
+};
+
+TEST_F(PrintPositionTest, ASmallJobRunsTheExactBoardLogAndCutsAndExtrudesWhereItShould) {
+    // PLA square, two 60 mm fibre lines, PLA square: 2 cuts, 2 PLA paths.
+    const abb::PrintProgram program =
+        make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 2, 60), pla_square(2, 1.65)});
+    make_session(program, chunks_of(program), options());
+    session_->start();
+    ASSERT_EQ(session_->wait_until_done(120s), PrintPhase::completed) << session_->poll().reason;
+
+    std::map<int, std::size_t> first_line;
+    const auto log = executed_job();
+    ASSERT_EQ(log, expected_board_log(program, &first_line));  // every command once, in order
+    const auto status = session_->poll();
+    EXPECT_TRUE(status.sync.finished);
+    EXPECT_EQ(status.sync.stats.feed_left_at_cut, 0u);
+    EXPECT_EQ(status.sync.stats.extrusion_left_at_off, 0u);
+
+    // Every cut: where the robot was (its recorded trajectory) when the board switched the
+    // cutter on, against the cut point; every PLA path: where it was when the prime and the
+    // retract ran, against the path's ends.
+    const auto trajectory = cell_->take_trajectory();
+    const auto pins = mock_->pin_events();
+    const auto entries = executed_job_entries();
+    std::vector<double> cut_errors, pla_errors;
+    std::size_t pin = 0;
+    for (const auto& e : program.events) {
+        std::optional<double> board_t;
+        if (e.kind == EventKind::cut) {
+            while (pin < pins.size() && pins[pin].command.find("S255") == std::string::npos) ++pin;
+            ASSERT_LT(pin, pins.size()) << "no cutter pin for event " << e.sequence;
+            board_t = pins[pin++].t_s;
+        } else if (e.kind == EventKind::extrude_on || e.kind == EventKind::extrude_off) {
+            board_t = entries.at(first_line.at(e.sequence)).t_s;
+        }
+        if (!board_t) continue;
+        const auto at = robot_at_board_time(trajectory, *board_t);
+        ASSERT_TRUE(at) << "no trajectory at board time " << *board_t;
+        (e.kind == EventKind::cut ? cut_errors : pla_errors).push_back((*at - e.position_mm).norm());
+    }
+    ASSERT_EQ(cut_errors.size(), 2u);
+    ASSERT_EQ(pla_errors.size(), 4u);
+    RecordProperty("cut_errors_mm", describe(cut_errors));
+    RecordProperty("pla_end_errors_mm", describe(pla_errors));
+    for (double e : cut_errors) EXPECT_LT(e, 0.5) << "cut errors " << describe(cut_errors);
+    for (double e : pla_errors) EXPECT_LT(e, 0.5) << "PLA errors " << describe(pla_errors);
+}
+
+TEST_F(PrintCellTest, AFourCutJobRunsTheExactBoardLogAtTimeScale20) {
+    const abb::PrintProgram program = four_cut_program();
+    make_session(program, chunks_of(program), options());
+    session_->start();
+    ASSERT_EQ(session_->wait_until_done(120s), PrintPhase::completed) << session_->poll().reason;
+    EXPECT_EQ(executed_job(), expected_board_log(program));
+}
+
+TEST_F(PrintCellTest, PauseInTheMiddleOfAFibrePathLosesAndRepeatsNoFeed) {
+    const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
+    std::int64_t fibre_start = 0;
+    for (const auto& e : program.events)
+        if (e.kind == EventKind::fibre_start) fibre_start = e.sequence;
+    make_session(program, chunks_of(program), options());
+    session_->start();
+    ASSERT_TRUE(eventually([&] {
+        const auto s = session_->poll().sync;
+        return s.metering.active && s.metering.sequence == fibre_start && s.metering.pieces_sent >= 15;
+    }));
+    session_->pause();
+    // The robot brakes and stands; the feed stops with it.
+    ASSERT_TRUE(eventually([&] { return !cell_->motion_status().moving; }, 5s));
+    const auto sent = session_->poll().sync.metering.pieces_sent;
+    const auto where = cell_->robot().path_mm;
+    std::this_thread::sleep_for(300ms);  // 6 simulated s: 30 mm of path if it went on
+    EXPECT_EQ(session_->poll().sync.metering.pieces_sent, sent);
+    EXPECT_NEAR(cell_->robot().path_mm, where, 1e-9);
+    session_->resume();
+    ASSERT_EQ(session_->wait_until_done(60s), PrintPhase::completed) << session_->poll().reason;
+    const auto log = executed_job();
+    EXPECT_EQ(log, expected_board_log(program));
+    EXPECT_EQ(first_fibre_pieces(log), metered(58, 1.0, ccf_speed, 1));
+}
+
+TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
+    const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
+    std::int64_t fibre_start = 0;
+    for (const auto& e : program.events)
+        if (e.kind == EventKind::fibre_start) fibre_start = e.sequence;
+    make_session(program, chunks_of(program), options());
+    session_->start();
+    ASSERT_TRUE(eventually([&] {
+        const auto s = session_->poll().sync;
+        return s.metering.active && s.metering.sequence == fibre_start && s.metering.pieces_sent >= 10;
+    }));
+    cell_->drop_modbus_link(1500ms);
+    // The service side: a fault with its reason; the robot side: FcMain holds on the lost
+    // heartbeat and the robot stands.
+    ASSERT_TRUE(eventually([&] { return session_->poll().phase == PrintPhase::faulted; }, 5s));
+    EXPECT_THAT(session_->poll().reason, HasSubstr("robot I/O"));
+    ASSERT_TRUE(eventually([&] {
+        return !cell_->motion_status().moving &&
+               abb::FcMainControl(*rws_).status().state == abb::FcState::held;
+    }, 5s)) << "FcMain: " << abb::to_string(abb::FcMainControl(*rws_).status().state);
+
+    ASSERT_TRUE(robot_->wait_until_up(10s));
+    session_->resume();
+    const auto phase = session_->wait_until_done(60s);
+    std::string task_log;
+    for (const auto& e : cell_->task_log()) task_log += e.text + "\n";
+    ASSERT_EQ(phase, PrintPhase::completed) << session_->poll().reason << "\nengine: "
+                                            << session_->poll().sync.fault_reason << "\nRAPID:\n"
+                                            << task_log;
+    // Nothing fed twice across the fault, and what was not fed is accounted for: the robot ran on
+    // until FcMain's heartbeat time-out held it, so the cut may come before the rest of the feed.
+    const auto pieces = first_fibre_pieces(executed_job());
+    const auto all = metered(58, 1.0, ccf_speed, 1);
+    ASSERT_LE(pieces.size(), all.size());
+    EXPECT_TRUE(std::equal(pieces.begin(), pieces.end(), all.begin()));
+    double fed = 0;
+    for (const auto& p : pieces) fed += std::stod(p.substr(4));
+    EXPECT_NEAR(fed + session_->poll().sync.stats.feed_left_at_cut_mm, 58.0, 1e-6);
+}
+
+TEST_F(PrintCellTest, OnePercentCorruptedSerialLinesLeaveTheBoardLogIdentical) {
+    const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
+    const auto expected = expected_board_log(program);
+    const std::int64_t first = *mock_->executed().back().line + 1;
+    const auto lines = static_cast<std::int64_t>(expected.size());
+    for (std::int64_t k = first + 7; k < first + lines; k += 100) mock_->corrupt_line(k);
+    make_session(program, chunks_of(program), options());
+    session_->start();
+    ASSERT_EQ(session_->wait_until_done(60s), PrintPhase::completed) << session_->poll().reason;
+    EXPECT_EQ(executed_job(), expected);
+    EXPECT_GE(board_.stats().resend_requests, static_cast<std::uint64_t>(lines / 100));
+}
+
+TEST_F(PrintCellTest, AChunkThatDoesNotBuildIsRefusedBeforeAnythingMoves) {
+    const abb::PrintProgram program = four_cut_program();
+    auto chunks = chunks_of(program);
+    ASSERT_GE(chunks.size(), 2u);
+    auto& text = chunks[1].text;
+    const auto at = text.find("MoveL");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 5, "MoveX");
+    make_session(program, chunks, options());
+    try {
+        session_->start();
+        FAIL() << "a broken chunk was accepted";
+    } catch (const daemon::print::PrintError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("pre-flight: " + chunks[1].file_name));
+    }
+    EXPECT_TRUE(executed_job().empty());
+    EXPECT_FALSE(cell_->motion_status().moving);
+    EXPECT_EQ(cell_->robot().path_mm, 0);
+}

@@ -1,0 +1,103 @@
+#pragma once
+// A program of this build run as a child process for the service tests: its stdout and stderr go
+// to a log file (read back for messages and errors), SIGTERM or SIGKILL on request, reaped and
+// killed at the end at the latest.
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace fibrecell::test {
+
+class ChildProcess {
+  public:
+    ChildProcess(const std::string& program, std::vector<std::string> args, std::filesystem::path log)
+        : log_(std::move(log)) {
+        const int fd = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        if (fd < 0) throw std::runtime_error("cannot open " + log_.string());
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_adddup2(&actions, fd, 1);
+        posix_spawn_file_actions_adddup2(&actions, fd, 2);
+        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+        args.insert(args.begin(), program);
+        std::vector<char*> argv;
+        for (std::string& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        const int rc = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        ::close(fd);
+        if (rc != 0) throw std::runtime_error("cannot start " + program);
+    }
+    ~ChildProcess() { kill_now(); }
+    ChildProcess(const ChildProcess&) = delete;
+    ChildProcess& operator=(const ChildProcess&) = delete;
+
+    pid_t pid() const { return pid_; }
+    bool running() {
+        if (pid_ <= 0) return false;
+        int status = 0;
+        if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+            exit_status_ = status;
+            pid_ = -1;
+            return false;
+        }
+        return true;
+    }
+    // SIGKILL: as a crash or a power loss would end it.
+    void kill_now() {
+        if (pid_ <= 0) return;
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, &exit_status_, 0);
+        pid_ = -1;
+    }
+    // SIGTERM, then waits; true when it exited by itself within `timeout`.
+    bool terminate(std::chrono::milliseconds timeout) {
+        if (pid_ <= 0) return true;
+        ::kill(pid_, SIGTERM);
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < end) {
+            if (!running()) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        kill_now();
+        return false;
+    }
+    int exit_status() const { return exit_status_; }
+
+    std::string log() const {
+        std::ifstream in(log_);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    // Waits until the log contains `text`; false after `timeout` or when the child ended.
+    bool wait_for_log(const std::string& text, std::chrono::milliseconds timeout) {
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < end) {
+            if (log().find(text) != std::string::npos) return true;
+            if (!running()) return log().find(text) != std::string::npos;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+
+  private:
+    std::filesystem::path log_;
+    pid_t pid_ = -1;
+    int exit_status_ = 0;
+};
+
+}  // namespace fibrecell::test

@@ -1,0 +1,161 @@
+// fibrecelld over its socket API, the binary run as users run it (service_fixture.hpp): the
+// protocol's and the jobs' errors, TCP with its token, a job planned and printed while two
+// clients watch it, a job that cannot be planned failing while another prints, and every job
+// action refused where the job's state does not allow it, with nothing changed.
+#include "service_fixture.hpp"
+
+#include <gmock/gmock.h>
+
+#include <map>
+#include <set>
+
+using namespace fibrecell;
+using namespace fibrecell::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+int error_code(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const api::ApiCallError& e) {
+        return e.code();
+    }
+    return 0;
+}
+
+}  // namespace
+
+TEST_F(ServiceTest, BadRequestsGetTheirErrorsAndTheServiceGoesOn) {
+    start_service(write_config());
+    auto c = client();
+    const json info = c.call("server.info");
+    EXPECT_EQ(info.value("service", ""), "fibrecelld");
+    EXPECT_EQ(info.value("cell", ""), "test-cell");
+
+    c.send_line("{\"jsonrpc\": \"2.0\", \"id\": 1, \"method\": ");  // cut short
+    auto answer = c.read_message(5s);
+    ASSERT_TRUE(answer);
+    EXPECT_EQ((*answer)["error"]["code"], -32700);
+    EXPECT_EQ(error_code([&] { c.call("job.fly"); }), -32601);
+    EXPECT_EQ(error_code([&] { c.call("job.get", {{"job", 99}}); }), -32002);
+    EXPECT_EQ(error_code([&] { c.call("job.get", {{"job", "one"}}); }), -32602);
+    EXPECT_EQ(error_code([&] { c.call("job.submit", {{"job_yaml", "name: x\n"}, {"bogus", 1}}); }), -32602);
+    EXPECT_EQ(error_code([&] { c.call("job.submit", {{"job_yaml", "name: x\nmodel: {mesh: none.vtk}\n"}}); }),
+              -32602);  // names a file that was not sent
+    EXPECT_EQ(error_code([&] { c.call("job.pause"); }), -32003);  // nothing on the cell
+    // A request above api.max_request_bytes (4 MiB) is answered and the connection closed.
+    c.send_line(json{{"jsonrpc", "2.0"}, {"id", 7}, {"method", "job.submit"},
+                     {"params", {{"job_yaml", std::string(5 << 20, 'x')}}}}.dump());
+    answer = c.read_message(10s);
+    ASSERT_TRUE(answer);
+    EXPECT_EQ((*answer)["error"]["code"], -32004);
+    auto again = client();  // the service goes on
+    EXPECT_EQ(again.call("job.list"), json::array());
+    EXPECT_TRUE(service_->running());
+}
+
+TEST_F(ServiceTest, TcpNeedsTheToken) {
+    start_service(write_config());
+    auto c = client();
+    const json info = c.call("server.info");
+    ASSERT_TRUE(info.contains("tcp_port")) << info.dump();
+    const auto port = info["tcp_port"].get<std::uint16_t>();
+    ASSERT_GT(port, 0);
+    try {
+        api::ApiClient::connect({.host = "127.0.0.1", .port = port, .token = "wrong"});
+        FAIL() << "a wrong token was accepted";
+    } catch (const api::ApiCallError& e) {
+        EXPECT_EQ(e.code(), -32001);
+    }
+    auto remote = api::ApiClient::connect({.host = "127.0.0.1", .port = port, .token = "test-token-0123456789"});
+    EXPECT_EQ(remote.call("cell.status").value("name", ""), "test-cell");
+}
+
+TEST_F(ServiceTest, AJobIsPlannedAndPrintedWhileTwoClientsWatchIt) {
+    start_service(write_config());
+    auto submitter = client();
+    auto watcher_a = client();
+    auto watcher_b = client();
+    watcher_a.call("subscribe", {{"topics", json::array({"*"})}});
+    watcher_b.call("subscribe", {{"topics", json::array({"*"})}});
+    const std::int64_t id = submit_bar(submitter, true);
+    ASSERT_GT(id, 0);
+    const json done = wait_for_state(submitter, id, "completed", 120s);
+    ASSERT_EQ(done.value("state", ""), "completed") << done.dump(2) << service_->log();
+    EXPECT_EQ(done["result"]["events_done"], done["result"]["events"]);
+    EXPECT_GT(done["plan"].value("layers", 0), 0);
+
+    // Each watcher saw every state change, in order, and progress on the way.
+    for (api::ApiClient* w : {&watcher_a, &watcher_b}) {
+        std::vector<std::string> states;
+        bool planning_progress = false, print_progress = false;
+        while (auto n = w->next_notification(200ms)) {
+            if (n->method == "notify.job_state" && n->params.value("id", std::int64_t{0}) == id)
+                states.push_back(n->params.value("state", ""));
+            if (n->method == "notify.job_progress") {
+                planning_progress |= n->params.contains("planning");
+                print_progress |= n->params.contains("print");
+            }
+        }
+        EXPECT_EQ(states, (std::vector<std::string>{"planning", "planned", "starting", "printing", "completed"}));
+        EXPECT_TRUE(planning_progress);
+        EXPECT_TRUE(print_progress);
+    }
+}
+
+TEST_F(ServiceTest, AJobThatCannotBePlannedFailsWhileAnotherPrints) {
+    start_service(write_config());
+    auto c = client();
+    const std::int64_t broken = submit_broken(c);
+    const std::int64_t bar = submit_bar(c, true);
+    const json failed = wait_for_state(c, broken, "failed");
+    ASSERT_EQ(failed.value("state", ""), "failed");
+    EXPECT_FALSE(failed.value("reason", "").empty());
+    const json done = wait_for_state(c, bar, "completed", 120s);
+    EXPECT_EQ(done.value("state", ""), "completed") << done.dump(2);
+    EXPECT_EQ(c.call("job.get", {{"job", broken}}).value("state", ""), "failed");
+}
+
+TEST_F(ServiceTest, ActionsThatDoNotFitTheJobsStateAreRefusedAndChangeNothing) {
+    start_service(write_config());
+    auto c = client();
+    const std::int64_t failed = submit_broken(c);
+    ASSERT_EQ(wait_for_state(c, failed, "failed").value("state", ""), "failed");
+    const std::int64_t planned = submit_bar(c, false);
+    ASSERT_EQ(wait_for_state(c, planned, "planned").value("state", ""), "planned");
+
+    // What each state allows (contracts.md, docs/jobs.md); everything else is a conflict.
+    const std::map<std::string, std::set<std::string>> allowed = {
+        {"planned", {"job.start", "job.abort", "job.remove"}},
+        {"failed", {"job.remove"}},
+    };
+    for (const auto& [id, state] : {std::pair{planned, std::string("planned")}, std::pair{failed, std::string("failed")}}) {
+        for (const char* method : {"job.start", "job.pause", "job.resume", "job.abort", "job.remove"}) {
+            if (allowed.at(state).count(method)) continue;
+            const json before = c.call("job.get", {{"job", id}});
+            EXPECT_EQ(error_code([&] { c.call(method, {{"job", id}}); }), -32003) << method << " on " << state;
+            const json after = c.call("job.get", {{"job", id}});
+            EXPECT_EQ(after.value("state", ""), before.value("state", "")) << method;
+            EXPECT_EQ(after.value("updated_at", ""), before.value("updated_at", "")) << method;
+        }
+    }
+    // The allowed ones: start, then (while printing) pause, resume, abort; remove of ended jobs.
+    ASSERT_EQ(c.call("job.start", {{"job", planned}}).value("state", ""), "starting");
+    ASSERT_EQ(wait_for_state(c, planned, "printing").value("state", ""), "printing");
+    EXPECT_EQ(error_code([&] { c.call("job.start", {{"job", planned}}); }), -32003);
+    EXPECT_EQ(error_code([&] { c.call("job.remove", {{"job", planned}}); }), -32003);
+    EXPECT_EQ(c.call("job.pause", {{"job", planned}}).value("state", ""), "pausing");
+    EXPECT_EQ(wait_for_state(c, planned, "paused").value("state", ""), "paused");
+    EXPECT_EQ(error_code([&] { c.call("job.pause", {{"job", planned}}); }), -32003);
+    EXPECT_EQ(c.call("job.resume", {{"job", planned}}).value("state", ""), "printing");
+    EXPECT_EQ(c.call("job.abort", {{"job", planned}}).value("state", ""), "aborted");
+    EXPECT_EQ(error_code([&] { c.call("job.resume", {{"job", planned}}); }), -32003);
+    EXPECT_EQ(c.call("job.remove", {{"job", failed}}).value("removed", 0), failed);
+    EXPECT_EQ(error_code([&] { c.call("job.get", {{"job", failed}}); }), -32002);
+    // The cell is free again once the runner has stopped the robot program.
+    json cell;
+    for (int i = 0; i < 500 && !(cell = c.call("cell.status"))["job"].is_null(); ++i)
+        std::this_thread::sleep_for(20ms);
+    EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
+}

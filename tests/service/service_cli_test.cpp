@@ -1,0 +1,69 @@
+// The `fibrecell` client against a running fibrecelld (service_fixture.hpp): submit --start
+// --watch follows a job to its outcome, jobs and status in both output forms, and one clear line
+// with a non-zero exit code for every error (no service, a conflict).
+#include "service_fixture.hpp"
+
+#include <gmock/gmock.h>
+
+#include <array>
+#include <cstdio>
+
+using namespace fibrecell;
+using namespace fibrecell::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+struct CliRun {
+    int status = -1;
+    std::string out;
+};
+
+// Runs the client with `args`; stdout and stderr together.
+CliRun fibrecell_cli(const std::string& args) {
+    const std::string cmd = std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell " + args + " 2>&1";
+    CliRun r;
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 512> buf{};
+    while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+    const int s = pclose(p);
+    r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+    return r;
+}
+
+}  // namespace
+
+TEST_F(ServiceTest, TheClientSaysClearlyWhenTheServiceIsNotRunning) {
+    const CliRun r = fibrecell_cli("status --socket " + socket().string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.out, "fibrecell: fibrecelld is not running (no socket at " + socket().string() + ")\n");
+}
+
+TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
+    start_service(write_config());
+    const std::string sock = " --socket " + socket().string();
+    const CliRun watched = fibrecell_cli("submit " + (dir_ / "jobs/bar.job.yaml").string() + " --start --watch" + sock);
+    EXPECT_EQ(watched.status, 0) << watched.out;
+    EXPECT_THAT(watched.out, HasSubstr("job 1 (bar) submitted: planning, prints when planned"));
+    EXPECT_THAT(watched.out, HasSubstr("job 1: printing"));
+    EXPECT_THAT(watched.out, HasSubstr("job 1 (bar) completed: "));
+    EXPECT_THAT(watched.out, HasSubstr("job folder  " + (state_dir() / "jobs/1").string()));
+
+    const CliRun jobs = fibrecell_cli("jobs" + sock);
+    EXPECT_EQ(jobs.status, 0);
+    EXPECT_THAT(jobs.out, HasSubstr("   1  bar                  completed"));
+    const CliRun as_json = fibrecell_cli("jobs --json" + sock);
+    const json parsed = json::parse(as_json.out);
+    ASSERT_EQ(parsed.size(), 1u);
+    EXPECT_EQ(parsed[0]["state"], "completed");
+    const CliRun status = fibrecell_cli("status" + sock);
+    EXPECT_THAT(status.out, HasSubstr("cell test-cell (simulated)"));
+
+    const CliRun conflict = fibrecell_cli("pause" + sock);
+    EXPECT_EQ(conflict.status, 1);
+    EXPECT_EQ(conflict.out, "fibrecell: job.pause: no job is on the cell; name one\n");
+    const CliRun finished = fibrecell_cli("start 1" + sock);
+    EXPECT_EQ(finished.status, 1);
+    EXPECT_THAT(finished.out, HasSubstr("fibrecell: job 1 is completed"));
+}

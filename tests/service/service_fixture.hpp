@@ -1,0 +1,138 @@
+#pragma once
+// fibrecelld as its users run it, for the service tests: the built binary started as a child on a
+// private state directory and socket (the simulated cell in-process at a high time scale, TCP on
+// an ephemeral loopback port with a token), real API clients, and two small jobs: a 60 x 10 x 1.6 mm
+// bar pulled along x (plans in a second or two, prints in seconds), and the same mesh without
+// stress, which cannot be planned.
+#include "config/base64.hpp"
+#include "daemon/api/api_client.hpp"
+#include "planner/io/vtk_writer.hpp"
+#include "planner/mesh/structured_mesh.hpp"
+#include "child_process.hpp"
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fibrecell::test {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// A loopback TCP port free right now (the kernel's choice), for the service's TCP listener.
+inline int free_tcp_port() {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof a;
+    ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+    ::close(fd);
+    return ntohs(a.sin_port);
+}
+
+inline std::string read_file(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class ServiceTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("fibrecell-service-" + std::to_string(::getpid()) + "-" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "jobs");
+        const auto mesh = planner::structured_tet_mesh({.size = {60, 10, 1.6}, .cells = {30, 5, 2}});
+        std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
+        for (auto& s : stress) s(0, 0) = 30.0;
+        planner::write_field_vtk((dir_ / "jobs/bar.vtk").string(), mesh, {.stress = &stress});
+        planner::write_field_vtk((dir_ / "jobs/bare.vtk").string(), mesh, {});
+        std::ofstream(dir_ / "jobs/bar.job.yaml")
+            << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n";
+        std::ofstream(dir_ / "jobs/broken.job.yaml")
+            << "name: broken\nmodel:\n  mesh: bare.vtk\nplacement:\n  position_mm: [150, 150]\n";
+    }
+    void TearDown() override {
+        service_.reset();
+        if (!HasFailure()) fs::remove_all(dir_);
+    }
+
+    fs::path socket() const { return dir_ / "api.sock"; }
+    fs::path state_dir() const { return dir_ / "state"; }
+
+    // The cell YAML of the tests; `extra` is appended (more sections or keys).
+    fs::path write_config(const std::string& extra = "", double time_scale = 50) const {
+        const fs::path p = dir_ / "cell.yaml";
+        std::ofstream(p) << "name: test-cell\n"
+                         << "log_level: info\n"
+                         << "state_dir: " << state_dir().string() << "\n"
+                         << "simulated: true\n"
+                         << "simulation: {time_scale: " << time_scale
+                         << ", hotend_tau_s: 2, residency_s: 0.5}\n"
+                         << "robot_io: {stable_reads: 1}\n"
+                         << "api:\n  socket: " << socket().string() << "\n"
+                         << "  max_request_bytes: 4194304\n"
+                         << "  tcp: {enabled: true, port: " << tcp_port_ << ", token: test-token-0123456789}\n"
+                         << "jobs: {planner_threads: 1}\n"
+                         << extra;
+        return p;
+    }
+
+    void start_service(const fs::path& config) {
+        service_ = std::make_unique<ChildProcess>(std::string(FIBRECELL_BINARY_DIR) + "/daemon/fibrecelld",
+                                                  std::vector<std::string>{"--config", config.string()},
+                                                  dir_ / ("fibrecelld-" + std::to_string(++starts_) + ".log"));
+        ASSERT_TRUE(service_->wait_for_log("fibrecelld: listening on", 30s)) << service_->log();
+    }
+
+    api::ApiClient client() const { return api::ApiClient::connect({.socket_path = socket().string()}); }
+
+    // job.submit as the CLI sends it: the YAML text and its mesh inline.
+    static json submit_params(const fs::path& job_yaml, const std::string& mesh, bool start) {
+        return {{"job_yaml", read_file(job_yaml)},
+                {"files", {{mesh, config::base64_encode(read_file(job_yaml.parent_path() / mesh))}}},
+                {"start", start}};
+    }
+    std::int64_t submit_bar(api::ApiClient& c, bool start) {
+        return c.call("job.submit", submit_params(dir_ / "jobs/bar.job.yaml", "bar.vtk", start), 30s)
+            .value("id", std::int64_t{0});
+    }
+    std::int64_t submit_broken(api::ApiClient& c) {
+        return c.call("job.submit", submit_params(dir_ / "jobs/broken.job.yaml", "bare.vtk", false), 30s)
+            .value("id", std::int64_t{0});
+    }
+
+    // Polls job.get until the job is in `state`; the last answer (check its state).
+    json wait_for_state(api::ApiClient& c, std::int64_t id, const std::string& state,
+                        std::chrono::milliseconds timeout = 60s) {
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        json job;
+        do {
+            job = c.call("job.get", {{"job", id}});
+            if (job.value("state", "") == state) return job;
+            std::this_thread::sleep_for(20ms);
+        } while (std::chrono::steady_clock::now() < end);
+        return job;
+    }
+
+    fs::path dir_;
+    int tcp_port_ = free_tcp_port();
+    int starts_ = 0;  // each start of the service logs to a file of its own
+    std::unique_ptr<ChildProcess> service_;
+};
+
+}  // namespace fibrecell::test

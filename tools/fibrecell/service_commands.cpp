@@ -1,0 +1,311 @@
+#include "tools/fibrecell/service_commands.hpp"
+
+#include "config/base64.hpp"
+#include "daemon/api/api_client.hpp"
+#include "planner/job/job_spec.hpp"
+#include "tools/fibrecell/job_view.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace fibrecell::tools {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+constexpr const char* default_socket = "/run/fibrecelld/api.sock";
+
+struct Connection {
+    std::string socket, host, token;
+    std::uint16_t port = 7420;
+    bool json_output = false;
+
+    api::ApiClient connect() const {
+        api::ApiEndpoint e;
+        e.socket_path = socket;
+        e.host = host;
+        e.port = port;
+        e.token = token;
+        return api::ApiClient::connect(e);
+    }
+};
+
+void add_connection_options(CLI::App& cmd, Connection& c) {
+    if (const char* s = std::getenv("FIBRECELL_SOCKET")) c.socket = s;
+    if (c.socket.empty()) c.socket = default_socket;
+    if (const char* t = std::getenv("FIBRECELL_TOKEN")) c.token = t;
+    cmd.add_option("--socket", c.socket, "the service's Unix socket ($FIBRECELL_SOCKET)");
+    cmd.add_option("--host", c.host, "connect over TCP to this host instead");
+    cmd.add_option("--port", c.port, "TCP port (with --host)");
+    cmd.add_option("--token", c.token, "TCP token ($FIBRECELL_TOKEN)");
+    cmd.add_flag("--json", c.json_output, "machine-readable output");
+}
+
+std::string read_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + p.string());
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A verb's body; errors become one line on stderr and exit code 1.
+void guarded(int& exit_code, const std::function<int()>& body) {
+    try {
+        exit_code = body();
+    } catch (const api::ApiCallError& e) {
+        std::cerr << "fibrecell: " << e.what() << "\n";
+        exit_code = 1;
+    } catch (const std::exception& e) {
+        std::cerr << "fibrecell: " << e.what() << "\n";
+        exit_code = 1;
+    }
+}
+
+void print(const Connection& c, const json& answer, const std::string& human) {
+    if (c.json_output)
+        std::cout << answer.dump() << "\n";
+    else
+        std::cout << human;
+}
+
+// The job YAML with every file it names (relative to its folder), for job.submit.
+json submit_params(const fs::path& job_file, bool start) {
+    const planner::JobSpec spec = planner::load_job_file(job_file.string());  // checked here first
+    const fs::path dir = fs::weakly_canonical(fs::absolute(job_file)).parent_path();
+    json files = json::object();
+    for (const std::string& path : {spec.model.mesh_path, spec.model.stress_path}) {
+        if (path.empty()) continue;
+        const fs::path rel = fs::weakly_canonical(path).lexically_relative(dir);
+        if (rel.empty() || *rel.begin() == "..")
+            throw std::runtime_error(path + ": a job's files must be in its folder or below it");
+        files[rel.generic_string()] = config::base64_encode(read_text(path));
+    }
+    return {{"job_yaml", read_text(job_file)}, {"files", files}, {"start", start}};
+}
+
+std::int64_t current_job(api::ApiClient& client) {
+    const json cell = client.call("cell.status");
+    if (cell.contains("job") && cell["job"].is_number_integer()) return cell["job"].get<std::int64_t>();
+    const json jobs = client.call("job.list");
+    if (jobs.empty()) throw std::runtime_error("the service has no jobs");
+    return jobs.back().value("id", std::int64_t{0});
+}
+
+void print_folders(const json& job) {
+    if (!job.contains("dir")) return;
+    const fs::path dir = job["dir"].get<std::string>();
+    std::cout << "  job folder  " << dir.string() << "\n";
+    if (fs::exists(dir / "plan/preview/index.html"))
+        std::cout << "  preview     " << (dir / "plan/preview/index.html").string() << "\n";
+    if (fs::exists(dir / "plan/report.json"))
+        std::cout << "  report      " << (dir / "plan/report.json").string() << "\n";
+    if (fs::exists(dir / "result.json"))
+        std::cout << "  result      " << (dir / "result.json").string() << "\n";
+}
+
+// Follows a job until it ends: a live line (redrawn in place on a terminal, else a line every few
+// seconds), a line for every state change; returns the exit code (0 completed).
+int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
+    const bool tty = ::isatty(STDOUT_FILENO) && !c.json_output;
+    client.call("subscribe", {{"topics", json::array({std::to_string(id), "cell"})}});
+    json job = client.call("job.get", {{"job", id}});
+    json cell = client.call("cell.status");
+    std::string state = job.value("state", "");
+    if (!c.json_output)
+        std::cout << "watching job " << id << " (" << job.value("name", "") << "): " << state << "\n";
+    std::string last_line, last_progress;
+    auto last_print = std::chrono::steady_clock::now() - 1h;
+    auto last_refresh = std::chrono::steady_clock::now();
+    while (!is_final_state(state)) {
+        const auto n = client.next_notification(500ms);
+        if (n) {
+            if (c.json_output) std::cout << json{{"method", n->method}, {"params", n->params}}.dump() << "\n";
+            if (n->method == "notify.job_state" && n->params.value("id", std::int64_t{0}) == id) {
+                job = n->params;
+            } else if (n->method == "notify.job_progress" && n->params.value("job", std::int64_t{0}) == id) {
+                for (const char* k : {"planning", "print"})
+                    if (n->params.contains(k)) job[k] = n->params[k];
+                if (n->params.value("state", "") == "printing") job.erase("planning");
+            } else if (n->method == "notify.cell_status") {
+                cell = n->params;
+            }
+        }
+        if (std::chrono::steady_clock::now() - last_refresh > 5s) {  // a missed notification
+            job = client.call("job.get", {{"job", id}});
+            last_refresh = std::chrono::steady_clock::now();
+        }
+        const std::string now_state = job.value("state", "");
+        if (now_state != state) {
+            state = now_state;
+            if (!c.json_output) {
+                if (tty) std::cout << "\r\x1b[K";
+                std::cout << "job " << id << ": " << state
+                          << (job.contains("reason") ? " (" + job["reason"].get<std::string>() + ")" : "")
+                          << "\n";
+                if (state == "paused" && job.contains("reason"))
+                    std::cout << "  the cell is safe; `fibrecell resume " << id << "` goes on, `fibrecell abort "
+                              << id << "` ends it\n";
+                last_line.clear();
+            }
+            continue;
+        }
+        if (c.json_output) continue;
+        const std::string line = live_line(job, cell);
+        const auto now = std::chrono::steady_clock::now();
+        if (line.empty() || line == last_line) continue;
+        if (tty) {
+            std::cout << "\r\x1b[K" << line << std::flush;
+            last_line = line;
+        } else {
+            // Not a terminal (a log, CI): a line when the progress moves, at most every 2 s,
+            // and every 30 s while it does not.
+            const std::string progress = live_line(job, json::object());
+            const bool moved = progress.substr(0, progress.rfind("  ")) != last_progress;
+            if ((moved && now - last_print > 2s) || now - last_print > 30s) {
+                std::cout << line << "\n";
+                last_line = line;
+                last_progress = progress.substr(0, progress.rfind("  "));
+                last_print = now;
+            }
+        }
+    }
+    job = client.call("job.get", {{"job", id}});
+    if (c.json_output) {
+        std::cout << job.dump() << "\n";
+    } else {
+        if (tty) std::cout << "\r\x1b[K";
+        std::cout << outcome_line(job) << "\n";
+        print_folders(job);
+    }
+    return job.value("state", "") == "completed" ? 0 : 1;
+}
+
+// One verb that names a job (or defaults to the job on the cell) and prints the new state.
+void add_job_action(CLI::App& app, int& exit_code, const std::string& verb, const std::string& method,
+                    const std::string& help, bool job_required) {
+    auto* cmd = app.add_subcommand(verb, help);
+    auto c = std::make_shared<Connection>();
+    auto id = std::make_shared<std::int64_t>(0);
+    auto* opt = cmd->add_option("job", *id, "job id");
+    if (job_required) opt->required();
+    add_connection_options(*cmd, *c);
+    cmd->callback([&exit_code, c, id, method, verb] {
+        guarded(exit_code, [&] {
+            api::ApiClient client = c->connect();
+            json params = json::object();
+            if (*id != 0) params["job"] = *id;
+            const json answer = client.call(method, params);
+            if (method == "job.remove")
+                print(*c, answer, "job " + std::to_string(answer.value("removed", 0)) + " removed\n");
+            else
+                print(*c, answer, "job " + std::to_string(answer.value("id", 0)) + ": " +
+                                      answer.value("state", "") + "\n");
+            return 0;
+        });
+    });
+}
+
+}  // namespace
+
+void add_service_commands(CLI::App& app, int& exit_code) {
+    {
+        auto* cmd = app.add_subcommand("submit", "submit a job to the service (planned there)");
+        auto c = std::make_shared<Connection>();
+        auto file = std::make_shared<std::string>();
+        auto start = std::make_shared<bool>(false);
+        auto follow = std::make_shared<bool>(false);
+        cmd->add_option("job", *file, "job YAML")->required()->check(CLI::ExistingFile);
+        cmd->add_flag("--start", *start, "print it as soon as it is planned");
+        cmd->add_flag("--watch", *follow, "follow it until it ends");
+        add_connection_options(*cmd, *c);
+        cmd->callback([&exit_code, c, file, start, follow] {
+            guarded(exit_code, [&] {
+                const json params = submit_params(*file, *start);
+                api::ApiClient client = c->connect();
+                const json job = client.call("job.submit", params, 60s);
+                const auto id = job.value("id", std::int64_t{0});
+                if (!*follow || c->json_output) print(*c, job, "");
+                if (!c->json_output)
+                    std::cout << "job " << id << " (" << job.value("name", "") << ") submitted: "
+                              << job.value("state", "") << (*start ? ", prints when planned" : "") << "\n";
+                return *follow ? watch(*c, client, id) : 0;
+            });
+        });
+    }
+    {
+        auto* cmd = app.add_subcommand("jobs", "list the service's jobs");
+        auto c = std::make_shared<Connection>();
+        add_connection_options(*cmd, *c);
+        cmd->callback([&exit_code, c] {
+            guarded(exit_code, [&] {
+                api::ApiClient client = c->connect();
+                const json jobs = client.call("job.list");
+                print(*c, jobs, jobs_table(jobs));
+                return 0;
+            });
+        });
+    }
+    {
+        auto* cmd = app.add_subcommand("status", "the cell, or one job");
+        auto c = std::make_shared<Connection>();
+        auto id = std::make_shared<std::int64_t>(0);
+        cmd->add_option("job", *id, "job id");
+        add_connection_options(*cmd, *c);
+        cmd->callback([&exit_code, c, id] {
+            guarded(exit_code, [&] {
+                api::ApiClient client = c->connect();
+                if (*id != 0) {
+                    const json job = client.call("job.get", {{"job", *id}});
+                    print(*c, job, job_details(job));
+                } else {
+                    const json cell = client.call("cell.status");
+                    print(*c, cell, cell_details(cell));
+                }
+                return 0;
+            });
+        });
+    }
+    add_job_action(app, exit_code, "start", "job.start", "print a planned job", true);
+    add_job_action(app, exit_code, "pause", "job.pause", "pause the print (default: the job on the cell)", false);
+    add_job_action(app, exit_code, "resume", "job.resume", "resume a paused or interrupted job", false);
+    add_job_action(app, exit_code, "abort", "job.abort", "abort a job (a running print stops safely)", false);
+    add_job_action(app, exit_code, "remove", "job.remove", "delete an ended job's folder", true);
+    {
+        auto* cmd = app.add_subcommand("watch", "follow a job's progress until it ends");
+        auto c = std::make_shared<Connection>();
+        auto id = std::make_shared<std::int64_t>(0);
+        cmd->add_option("job", *id, "job id (default: the job on the cell, else the latest)");
+        add_connection_options(*cmd, *c);
+        cmd->callback([&exit_code, c, id] {
+            guarded(exit_code, [&] {
+                api::ApiClient client = c->connect();
+                return watch(*c, client, *id != 0 ? *id : current_job(client));
+            });
+        });
+    }
+    {
+        auto* cmd = app.add_subcommand("estop", "M112 and the robot's abort request (NOT a safety function)");
+        auto c = std::make_shared<Connection>();
+        add_connection_options(*cmd, *c);
+        cmd->callback([&exit_code, c] {
+            guarded(exit_code, [&] {
+                api::ApiClient client = c->connect();
+                const json answer = client.call("cell.estop");
+                print(*c, answer, "estop sent: " + answer.value("note", std::string()) + "\n");
+                return 0;
+            });
+        });
+    }
+}
+
+}  // namespace fibrecell::tools
