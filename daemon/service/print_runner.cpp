@@ -352,6 +352,11 @@ void PrintRunner::finish(const std::string& outcome_reason) {
     if (!outcome_reason.empty()) result["reason"] = outcome_reason;
     if (const auto cut = timing_of(st.sync, abb::EventKind::cut))
         result["cut_error_mm"] = summary_json(cut->position_error_mm);
+    // Event -> first board command, per kind (the engine's own measurement).
+    json latency = json::object();
+    for (const auto& t : st.sync.stats.timing)
+        latency[std::string(abb::to_string(t.kind))] = summary_json(t.submit_ms);
+    result["latency_ms"] = latency;
     std::ofstream(store_.job_dir(a->id) / "result.json") << result.dump(2) << "\n";
     spdlog::info("print.finished job {} {}", a->id, result.dump());
     a->session.reset();

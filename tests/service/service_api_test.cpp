@@ -159,3 +159,49 @@ TEST_F(ServiceTest, ActionsThatDoNotFitTheJobsStateAreRefusedAndChangeNothing) {
         std::this_thread::sleep_for(20ms);
     EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
 }
+
+TEST_F(ServiceTest, EstopStopsTheBoardAndTheRobotAndAbortsTheJob) {
+    start_service(write_config("", 5));
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing");
+    const json answer = c.call("cell.estop");
+    EXPECT_THAT(answer.value("note", ""), HasSubstr("not a safety function"));
+    EXPECT_EQ(wait_for_state(c, id, "aborted").value("state", ""), "aborted");
+    // M112 killed the board (it needs a reset); the robot program took the abort request.
+    json cell;
+    for (int i = 0; i < 500; ++i) {
+        cell = c.call("cell.status");
+        if (cell["job"].is_null() && cell["board"].value("state", "") != "active") break;
+        std::this_thread::sleep_for(20ms);
+    }
+    EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
+    EXPECT_NE(cell["board"].value("state", ""), "active") << cell.dump();
+    EXPECT_TRUE(service_->running());
+}
+
+TEST_F(ServiceTest, APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst) {
+    start_service(write_config("print: {heater_timeout_min: 0.02}\n", 5));  // 1.2 s
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing");
+    c.call("job.pause", {{"job", id}});
+    ASSERT_EQ(wait_for_state(c, id, "paused").value("state", ""), "paused");
+    json board;
+    for (int i = 0; i < 500; ++i) {  // the board reports its targets about once a second
+        board = c.call("cell.status")["board"];
+        if (board.value("pla_target_c", -1.0) == 0 && board.value("ccf_target_c", -1.0) == 0) break;
+        std::this_thread::sleep_for(20ms);
+    }
+    EXPECT_EQ(board.value("pla_target_c", -1.0), 0) << board.dump();
+    EXPECT_EQ(board.value("ccf_target_c", -1.0), 0) << board.dump();
+    c.call("job.resume", {{"job", id}});
+    for (int i = 0; i < 500; ++i) {
+        board = c.call("cell.status")["board"];
+        if (board.value("pla_target_c", 0.0) == 200) break;
+        std::this_thread::sleep_for(20ms);
+    }
+    EXPECT_EQ(board.value("pla_target_c", 0.0), 200) << board.dump();
+    EXPECT_EQ(c.call("job.get", {{"job", id}}).value("state", ""), "printing");
+    c.call("job.abort", {{"job", id}});
+}
