@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+using namespace fibrecell;
 using namespace std::chrono_literals;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
@@ -96,7 +97,8 @@ void report(const char* what, const json& job) {
     }
     const json& r = job["result"];
     std::printf(", %.1f s\n", r.value("elapsed_s", 0.0));
-    for (const auto& [kind, s] : r.value("latency_ms", json::object()).items())
+    if (!r.contains("latency_ms")) return;
+    for (const auto& [kind, s] : r.at("latency_ms").items())
         std::printf("    %-12s event -> board command n=%-5lld median %.3f ms  p99 %.3f ms\n", kind.c_str(),
                     s.value("count", 0LL), s.value("median", 0.0), s.value("p99", 0.0));
 }

@@ -307,8 +307,9 @@ void PrintRunner::poll_active() {
 
     switch (st.phase) {
         case print::PrintPhase::completed: {
-            store_.apply(a.id, JobAction::print_done);
-            finish("");
+            const std::int64_t id = a.id;
+            finish("");  // result.json first: a client that sees `completed` finds the result
+            store_.apply(id, JobAction::print_done);
             return;
         }
         case print::PrintPhase::faulted:
