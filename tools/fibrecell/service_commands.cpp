@@ -129,7 +129,7 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     while (!is_final_state(state)) {
         const auto n = client.next_notification(500ms);
         if (n) {
-            if (c.json_output) std::cout << json{{"method", n->method}, {"params", n->params}}.dump() << "\n";
+            if (c.json_output) std::cout << json{{"method", n->method}, {"params", n->params}}.dump() << std::endl;
             if (n->method == "notify.job_state" && n->params.value("id", std::int64_t{0}) == id) {
                 job = n->params;
             } else if (n->method == "notify.job_progress" && n->params.value("job", std::int64_t{0}) == id) {
@@ -155,6 +155,7 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
                 if (state == "paused" && job.contains("reason"))
                     std::cout << "  the cell is safe; `fibrecell resume " << id << "` goes on, `fibrecell abort "
                               << id << "` ends it\n";
+                std::cout << std::flush;
                 last_line.clear();
             }
             continue;
@@ -172,7 +173,7 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
             const std::string progress = live_line(job, json::object());
             const bool moved = progress.substr(0, progress.rfind("  ")) != last_progress;
             if ((moved && now - last_print > 2s) || now - last_print > 30s) {
-                std::cout << line << "\n";
+                std::cout << line << std::endl;  // live: a pipe or file is block-buffered
                 last_line = line;
                 last_progress = progress.substr(0, progress.rfind("  "));
                 last_print = now;
