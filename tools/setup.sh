@@ -54,7 +54,8 @@ run_demo() {
     "$release_dir/daemon/fibrecelld" --config "$root/config/cell-demo.yaml" \
         --state-dir "$demo/state" --socket "$sock" >"$log" 2>&1 &
     local pid=$!
-    trap 'kill "$pid" 2>/dev/null; wait "$pid" 2>/dev/null' EXIT
+    # shellcheck disable=SC2064  # the pid is fixed now; the trap runs after this function
+    trap "kill $pid 2>/dev/null; wait $pid 2>/dev/null" EXIT
     for _ in $(seq 100); do
         [ -S "$sock" ] && break
         kill -0 "$pid" 2>/dev/null || { cat "$log" >&2; echo "demo: fibrecelld did not start" >&2; exit 1; }
