@@ -78,7 +78,9 @@ json print_once(api::ApiClient& c, const std::string& socket, const fs::path& jo
         j = c.call("job.get", {{"job", id}});
         peak_rss = std::max(peak_rss, rss_kib(pid));
         const std::string state = j.value("state", "");
-        if (state == "completed" || state == "failed" || state == "aborted" || state == "paused") break;
+        if (state == "completed" || state == "failed" || state == "aborted" || state == "paused" ||
+            state == "planned")  // planned again: the start was refused
+            break;
     }
     const double secs = std::chrono::duration<double>(Clock::now() - start).count();
     if (load)
@@ -106,6 +108,7 @@ void report(const char* what, const json& job) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line at a time, also into a pipe
     if (argc < 3) {
         std::fprintf(stderr, "usage: service_bench SOCKET JOB.yaml [MESH (default: <job stem>.msh)]\n");
         return 2;

@@ -108,6 +108,7 @@ void PrintSession::start() {
         fc_.ensure_running();
         wait_for_robot_heartbeat();
         end_previous_run();
+        reset_service_outputs();
         fc_.upload_chunks(options_.job_dir, chunks_);
     } catch (const std::exception& e) {
         throw PrintError(std::string("pre-flight: robot program: ") + e.what());
@@ -248,6 +249,15 @@ void PrintSession::wait_for_robot_heartbeat() {
                              " ms (is FcMain running?)");
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
+}
+
+// A run starts with the service's outputs at rest: FcMain refuses one while the previous run's
+// last barrier release is still standing (docs/modbus-map.md).
+void PrintSession::reset_service_outputs() {
+    links_.robot_io.set_release(0);
+    links_.robot_io.set_pause(false);
+    links_.robot_io.set_abort(false);
+    std::this_thread::sleep_for(3 * links_.robot_io.config().poll_period);  // written by then
 }
 
 // A run left over from before a service restart (FcMain holding the robot on the lost heartbeat,

@@ -117,6 +117,7 @@ class PrintSession {
     void fault(const std::string& reason);
     void rearm_after_hold();
     void end_previous_run();
+    void reset_service_outputs();
     void wait_for_robot_heartbeat();
 
     const drivers::abb::PrintProgram& program_;

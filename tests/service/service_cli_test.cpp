@@ -66,4 +66,9 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
     const CliRun finished = fibrecell_cli("start 1" + sock);
     EXPECT_EQ(finished.status, 1);
     EXPECT_THAT(finished.out, HasSubstr("fibrecell: job 1 is completed"));
+
+    // The cell prints the next job as well (the previous run's outputs are reset for it).
+    const CliRun second = fibrecell_cli("submit " + (dir_ / "jobs/bar.job.yaml").string() + " --start --watch" + sock);
+    EXPECT_EQ(second.status, 0) << second.out;
+    EXPECT_THAT(second.out, HasSubstr("job 2 (bar) completed: "));
 }
