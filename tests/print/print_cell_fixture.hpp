@@ -9,6 +9,7 @@
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
+#include "../sync/metered_pieces.hpp"
 
 #include <gtest/gtest.h>
 
@@ -69,21 +70,6 @@ inline abb::PrintProgram make_program(const std::vector<planner::ToolpathLayer>&
                                      .cutter_distance_mm = 42});
 }
 
-// The metering rule written out: n = ceil(path / piece) pieces, E rounded to 1e-5 on the running
-// total, one "G1 E<e> F<feed>" each.
-inline std::vector<std::string> metered(double path_mm, double e_per_path, double speed, double piece) {
-    const int n = static_cast<int>(std::ceil(path_mm / piece - 1e-9));
-    const auto r5 = [](double v) { return std::round(v * 1e5) / 1e5; };
-    std::vector<std::string> out;
-    for (int i = 0; i < n; ++i) {
-        const double e = r5(path_mm * e_per_path * (i + 1) / n) - r5(path_mm * e_per_path * i / n);
-        char line[64];
-        std::snprintf(line, sizeof line, "G1 E%.5f F%.1f", e, speed * e_per_path * 60);
-        out.emplace_back(line);
-    }
-    return out;
-}
-
 // Every board command of a whole print, in order: the pre-flight heat-up, the engine's start,
 // then each event's commands (hotends are hot at every head switch). `first_line`, when given,
 // gets the index of each event's first command (by sequence; none: absent).
@@ -106,13 +92,13 @@ inline std::vector<std::string> expected_board_log(const abb::PrintProgram& prog
             case EventKind::head_switch: add(ref.select(head)); break;
             case EventKind::extrude_on:
                 add(ref.prime());
-                add(metered(e.length_mm, pla_ratio, e.speed_mm_s, 2));
+                add(metered_pieces(e.length_mm, pla_ratio, e.speed_mm_s, 2));
                 break;
             case EventKind::extrude_off: add(ref.retract()); break;
             case EventKind::fibre_start:
                 add(ref.thread_fibre());
                 out.push_back("M400");
-                add(metered(e.length_mm, 1.0, e.speed_mm_s, 1));
+                add(metered_pieces(e.length_mm, 1.0, e.speed_mm_s, 1));
                 break;
             case EventKind::cut: add(ref.cut()); break;
             case EventKind::path_end:

@@ -125,7 +125,7 @@ TEST_F(PrintCellTest, PauseInTheMiddleOfAFibrePathLosesAndRepeatsNoFeed) {
     ASSERT_EQ(session_->wait_until_done(60s), PrintPhase::completed) << session_->poll().reason;
     const auto log = executed_job();
     EXPECT_EQ(log, expected_board_log(program));
-    EXPECT_EQ(first_fibre_pieces(log), metered(58, 1.0, ccf_speed, 1));
+    EXPECT_EQ(first_fibre_pieces(log), metered_pieces(58, 1.0, ccf_speed, 1));
 }
 
 TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
@@ -160,7 +160,7 @@ TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
     // Nothing fed twice across the fault, and what was not fed is accounted for: the robot ran on
     // until FcMain's heartbeat time-out held it, so the cut may come before the rest of the feed.
     const auto pieces = first_fibre_pieces(executed_job());
-    const auto all = metered(58, 1.0, ccf_speed, 1);
+    const auto all = metered_pieces(58, 1.0, ccf_speed, 1);
     ASSERT_LE(pieces.size(), all.size());
     EXPECT_TRUE(std::equal(pieces.begin(), pieces.end(), all.begin()));
     double fed = 0;
