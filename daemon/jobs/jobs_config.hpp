@@ -4,6 +4,7 @@
 //   jobs:
 //     planning_workers: 1              # jobs planned at the same time
 //     planner_threads: 0               # layer threads per plan (0: all cores)
+//     planner_nice: 10                 # planning's CPU priority below the print's (0..19)
 //     max_queued: 16                   # jobs waiting for or in planning; more are refused
 //     keep_completed: 50               # ended jobs kept; the oldest beyond are removed
 //     plan_retries: 3                  # restarts during one job's planning before it fails
@@ -17,6 +18,7 @@ namespace fibrecell::daemon::jobs {
 struct JobsConfig {
     int planning_workers = 1;  // 1..16
     int planner_threads = 0;   // 0..256
+    int planner_nice = 10;     // 0..19
     int max_queued = 16;       // 1..10000
     int keep_completed = 50;   // 0..100000
     int plan_retries = 3;      // 0..10

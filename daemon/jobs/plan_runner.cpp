@@ -4,9 +4,30 @@
 
 #include <spdlog/spdlog.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 namespace fibrecell::daemon::jobs {
+
+namespace {
+
+// Linux keeps a nice value per thread and copies it to the threads this one starts. Never
+// raises the priority of a service that was started nicer still.
+void lower_this_threads_priority(int nice) {
+    const auto self = static_cast<id_t>(::gettid());
+    errno = 0;
+    const int now = ::getpriority(PRIO_PROCESS, self);
+    if (errno != 0 || nice <= now) return;
+    if (::setpriority(PRIO_PROCESS, self, nice) != 0)
+        spdlog::warn("planner: cannot lower the planning thread's priority to nice {}: {}", nice,
+                     std::strerror(errno));
+}
+
+}  // namespace
 
 PlanRunner::PlanRunner(JobStore& store, PlanRunnerOptions options)
     : store_(store), options_(std::move(options)) {
@@ -66,6 +87,7 @@ void PlanRunner::stop() {
 }
 
 void PlanRunner::work() {
+    lower_this_threads_priority(options_.planner_nice);
     for (;;) {
         std::int64_t id = 0;
         {

@@ -29,6 +29,9 @@ namespace fibrecell::daemon::jobs {
 struct PlanRunnerOptions {
     int workers = 1;                      // jobs planned at the same time (JobsConfig)
     int planner_threads = 0;              // layer threads per plan (0: all cores)
+    // Nice value of the planning threads (their layer threads inherit it): planning takes every
+    // core it gets, and a print's sync threads must still run within milliseconds.
+    int planner_nice = 10;
     drivers::abb::RobotCellConfig robot;  // the cell the RAPID program is for
 };
 

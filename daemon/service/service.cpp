@@ -119,6 +119,7 @@ void Service::start() {
     planner_ = std::make_unique<jobs::PlanRunner>(
         *store_, jobs::PlanRunnerOptions{.workers = config_.jobs.planning_workers,
                                          .planner_threads = config_.jobs.planner_threads,
+                                         .planner_nice = config_.jobs.planner_nice,
                                          .robot = config_.cell.robot});
     planner_->on_progress([this](std::int64_t id, const jobs::JobProgress& p) {
         api_->publish({.topic = std::to_string(id),

@@ -71,6 +71,7 @@ struct Exec {
     double last_busy_s = 0;
     double last_report_s = 0;
     bool ok_pending = true;     // false once the ok (or M105 reply) went out
+    std::optional<double> move_start_s, move_end_s;  // a G0/G1 once queued in the planner
 };
 
 }  // namespace
@@ -372,7 +373,7 @@ struct MockGt2560::Impl {
     // --- Executing commands ----------------------------------------------------------
 
     void finish(Exec& e, double t) {
-        executed.push_back({t, e.line, e.text});
+        executed.push_back({t, e.line, e.text, e.move_start_s, e.move_end_s});
         cv.notify_all();
         if (e.line && delay.count(*e.line)) {
             e.wait = Wait::ok_delay;
@@ -486,7 +487,7 @@ struct MockGt2560::Impl {
         }
     }
 
-    void queue_move(const Exec& e, double t) {
+    void queue_move(Exec& e, double t) {
         const double f = param(e.text, 'F').value_or(feed_mm_min);
         feed_mm_min = f;
         double de = 0;
@@ -499,6 +500,8 @@ struct MockGt2560::Impl {
         const double start = std::max(t, planner.empty() ? t : planner.back().end_s);
         planner.push_back({start + duration});
         last_move_end = start + duration;
+        e.move_start_s = start;
+        e.move_end_s = start + duration;
     }
 
     // Returns true when the current command is complete and its ok is out.

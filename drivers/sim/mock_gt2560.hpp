@@ -41,6 +41,8 @@ struct ExecutedCommand {
     double t_s = 0;                   // simulated time the handler returned
     std::optional<std::int64_t> line; // its N, when it was numbered
     std::string text;                 // the command without N and checksum
+    // A G0/G1 runs later, when the planner gets to it: its motion's start and end [simulated s].
+    std::optional<double> move_start_s, move_end_s;
 };
 
 // M42 / M280 / M3 / M5 as they took effect, with the planner state at that moment.

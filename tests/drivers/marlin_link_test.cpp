@@ -205,6 +205,25 @@ TEST_F(MarlinLinkTest, CutWithoutM400FiresWhileTheFeedIsStillRunning) {
     EXPECT_LT(pins[0].t_s, pins[0].last_move_end_s);
 }
 
+// The ok of a G1 comes when the planner takes it; the move runs later, after the ones before it.
+TEST_F(MarlinLinkTest, MovesRunBackToBackAfterTheirOks) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 20;
+    start(mo);
+    ASSERT_TRUE(finish(link_.submit({"T1", "M83", "G1 E20 F300", "G1 E-1 F2400"})).ok());
+    const auto log = mock_->executed();
+    ASSERT_GE(log.size(), 2u);
+    const auto& feed = log[log.size() - 2];
+    const auto& retract = log.back();
+    ASSERT_EQ(feed.text, "G1 E20 F300");
+    ASSERT_TRUE(feed.move_start_s && feed.move_end_s && retract.move_start_s && retract.move_end_s);
+    EXPECT_NEAR(*feed.move_end_s - *feed.move_start_s, 20.0 / 5.0, 1e-9);     // 20 mm at 5 mm/s
+    EXPECT_NEAR(*retract.move_start_s, *feed.move_end_s, 1e-9);               // queued behind it
+    EXPECT_NEAR(*retract.move_end_s - *retract.move_start_s, 1.0 / 40.0, 1e-9);
+    EXPECT_LT(retract.t_s, *retract.move_start_s);  // its ok long before it runs
+    EXPECT_FALSE(log[log.size() - 3].move_start_s);  // M83 is no move
+}
+
 TEST_F(MarlinLinkTest, ResetMidJobFailsTheJobAndNeverRenumbers) {
     start();
     mock_->reset_at_line(50);

@@ -6,6 +6,9 @@
 #include "planner/io/vtk_writer.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -71,8 +74,11 @@ TEST_F(PlanRunnerTest, PlansASubmittedJobWithProgress) {
     std::mutex mu;
     std::vector<std::string> stages;
     std::vector<JobRecord> finished;
+    std::set<int> nice;  // of the threads that reported progress
     runner.on_progress([&](std::int64_t id, const JobProgress& p) {
+        const int thread_nice = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()));
         std::lock_guard lock(mu);
+        nice.insert(thread_nice);
         EXPECT_EQ(id, 1);
         EXPECT_GE(p.fraction, 0.0);
         EXPECT_LE(p.fraction, 1.0);
@@ -96,6 +102,9 @@ TEST_F(PlanRunnerTest, PlansASubmittedJobWithProgress) {
     EXPECT_EQ(stages.back(), "robot");
     ASSERT_EQ(finished.size(), 1u);
     EXPECT_EQ(finished[0].state, JobState::planned);
+    // Planning runs below the service's priority (a print's sync threads come first).
+    ASSERT_FALSE(nice.empty());
+    EXPECT_GE(*nice.begin(), 10);
 }
 
 TEST_F(PlanRunnerTest, FailedPlanMarksThatJobFailedWhileAnotherPlans) {

@@ -225,6 +225,46 @@ class PrintCellTest : public ::testing::Test {
         return s->tcp_wobj_mm;
     }
 
+    // How far off `point` (a path's start or end) the robot was when the board acted at its
+    // simulated time `board_t_s`, in mm along the robot's path. Where the robot stood at the
+    // point, the time it stood there before the action (`at_end`: since it arrived) or after it
+    // (a start: until it left) counts at `speed_mm_s`: feed that goes on after the robot stopped
+    // at a path's end, or starts before it leaves, is as far off as feed a distance away.
+    std::optional<double> path_error_mm(const std::vector<drivers::sim::TrajectorySample>& trajectory,
+                                        const Eigen::Vector3d& point, double board_t_s,
+                                        bool at_end, double speed_mm_s) const {
+        if (trajectory.empty()) return std::nullopt;
+        const auto wall = mock_->wall_at(board_t_s);
+        const bool after_all = wall > trajectory.back().wall;
+        const auto robot = after_all ? std::optional(trajectory.back())
+                                     : drivers::sim::sample_at(trajectory, wall);
+        if (!robot) return std::nullopt;
+        // The stays at the point: runs of samples there; the one nearest the action in time.
+        std::optional<std::pair<std::size_t, std::size_t>> stay;
+        double nearest = 0;
+        for (std::size_t i = 0; i < trajectory.size(); ++i) {
+            if ((trajectory[i].tcp_wobj_mm - point).norm() > 1e-3) continue;
+            std::size_t j = i;
+            while (j + 1 < trajectory.size() && (trajectory[j + 1].tcp_wobj_mm - point).norm() <= 1e-3) ++j;
+            const auto in = trajectory[i].wall, out = trajectory[j].wall;
+            const double gap = wall < in ? seconds(in - wall) : wall > out ? seconds(wall - out) : 0;
+            if (!stay || gap < nearest) stay = {i, j}, nearest = gap;
+            i = j;
+        }
+        if (!stay) return std::nullopt;
+        const auto& in = trajectory[stay->first];
+        const auto& out = trajectory[stay->second];
+        const bool stands_to_the_end = stay->second + 1 == trajectory.size();
+        if (wall < in.wall) return in.path_mm - robot->path_mm;
+        if (wall > out.wall && !stands_to_the_end) return robot->path_mm - out.path_mm;
+        const double stood_s = at_end ? seconds(wall - in.wall) : seconds(out.wall - wall);
+        return std::max(0.0, stood_s) * scale_ * speed_mm_s;
+    }
+
+    static double seconds(std::chrono::steady_clock::duration d) {
+        return std::chrono::duration<double>(d).count();
+    }
+
     double scale_ = print_time_scale;  // a derived fixture may lower it in its constructor
     std::filesystem::path dir_;
     std::unique_ptr<drivers::sim::SimCell> cell_;
