@@ -3,22 +3,41 @@
 #include "drivers/abb/rapid/rapid_writer.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace fibrecell::daemon::service {
 
 namespace abb = drivers::abb;
 
-abb::PrintProgram program_tail(const abb::PrintProgram& program, std::size_t first_move) {
+abb::PrintProgram program_tail(const abb::PrintProgram& program, std::size_t first_move,
+                               std::int64_t first_event) {
     abb::PrintProgram tail;
     tail.moves.assign(program.moves.begin() + static_cast<std::ptrdiff_t>(first_move),
                       program.moves.end());
     for (const abb::ProgramEvent& e : program.events) {
-        if (e.move < first_move) continue;
+        if (e.move < first_move || e.sequence < first_event) continue;
         abb::ProgramEvent moved = e;
         moved.move -= first_move;
         tail.events.push_back(moved);
     }
     tail.stats = program.stats;
     return tail;
+}
+
+abb::PrintProgram reentry_program(const abb::PrintProgram& program, const jobs::ResumePoint& resume) {
+    // build_print_program ends every travel above the next path start, then approaches.
+    if (resume.first_move == 0 || resume.first_move >= program.moves.size())
+        throw std::invalid_argument("re-entry: move " + std::to_string(resume.first_move) +
+                                    " is no approach after a travel");
+    abb::PrintProgram run = program_tail(program, resume.first_move - 1, resume.first_event);
+    abb::ProgramMove& rise = run.moves.front();
+    rise.role = abb::MoveRole::travel;
+    rise.joint = false;  // straight up and over, not a joint move's curve
+    rise.fine = true;
+    rise.zone_mm = 0;
+    rise.length_mm = 0;  // from wherever the robot was held
+    return run;
 }
 
 PrintPlan load_print_plan(const std::filesystem::path& job_file, const std::filesystem::path& plan_dir,
@@ -47,7 +66,7 @@ PrintPlan load_print_plan(const std::filesystem::path& job_file, const std::file
     }
     const abb::RapidOutput rapid =
         first_move == 0 ? abb::write_rapid_chunks(p.program, robot)
-                        : abb::write_rapid_chunks(program_tail(p.program, first_move), robot);
+                        : abb::write_rapid_chunks(reentry_program(p.program, *p.resume), robot);
     for (const abb::RapidModule& m : rapid.modules) p.chunks.push_back({m.file_name, m.text});
     return p;
 }

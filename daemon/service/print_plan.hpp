@@ -35,9 +35,17 @@ PrintPlan load_print_plan(const std::filesystem::path& job_file, const std::file
                           const drivers::abb::RobotCellConfig& robot,
                           std::optional<std::int64_t> last_confirmed = std::nullopt);
 
-// The program from `first_move` on, for the RAPID writer: later moves and the events on them,
-// with their sequence numbers kept (the robot reports them as in the whole program).
+// The program from `first_move` on, for the RAPID writer: later moves and the events on them
+// from `first_event` on, with their sequence numbers kept (the robot reports them as in the whole
+// program).
 drivers::abb::PrintProgram program_tail(const drivers::abb::PrintProgram& program,
-                                        std::size_t first_move);
+                                        std::size_t first_move, std::int64_t first_event = 1);
+
+// The program of a run that re-enters at `resume`. The robot stands where it was held, somewhere
+// in the interrupted unit at that layer's height: the run's first move is a MoveL up to the
+// unit's travel point above its path start (where the whole program's travel there ends), then
+// the approach comes straight down; the robot never moves sideways at the layer's height.
+drivers::abb::PrintProgram reentry_program(const drivers::abb::PrintProgram& program,
+                                           const jobs::ResumePoint& resume);
 
 }  // namespace fibrecell::daemon::service
