@@ -243,8 +243,11 @@ void MotionPlan::replan() {
     ++changes_;
 }
 
-// Samples every record period and at every segment end in (t_, t_s], in time order.
+// Samples every record period and at every segment end in (t_, t_s], in time order, none past
+// the profile's end: a thread that catches up late records the standstill at its analytic time,
+// not the tick that noticed it.
 void MotionPlan::record_until(double t_s) {
+    t_s = std::min(t_s, profile_.end_time());
     const double period = options_.record_period_s;
     auto periodic_time = [&] {
         return period > 0 ? motion_start_t_ + static_cast<double>(records_done_ + 1) * period : t_s;
