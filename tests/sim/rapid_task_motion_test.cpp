@@ -6,7 +6,9 @@
 #include "drivers/sim/rapid_exec/rapid_task.hpp"
 
 #include "drivers/abb/cell/robot_config.hpp"
+#include "drivers/abb/kinematics/confdata.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
+#include "drivers/abb/kinematics/opw_kinematics.hpp"
 #include "drivers/abb/rapid/reader.hpp"
 
 #include <gtest/gtest.h>
@@ -195,6 +197,57 @@ TEST_F(RapidTaskMotion, UnreachableTargetIsAnErrorAtItsLine) {
                              "ENDMODULE\n");
     EXPECT_EQ(s.state, TaskState::error);
     EXPECT_EQ(s.error.rfind("M line 8: target unreachable", 0), 0u) << s.error;
+}
+
+TEST_F(RapidTaskMotion, CRobTIsWhereTheRobotStandsAndOffsOfItLiftsStraightUp) {
+    const Eigen::Vector3d side_mm = start_mm + Eigen::Vector3d(30, 20, 0);
+    const Target side = target_at(side_mm);
+    const std::string unset = "[[0,0,0],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]]";
+    const TaskStatus s = run("MODULE M\n" + cell_data() +
+                             "  CONST robtarget pHome := " + home.text + ";\n"
+                             "  CONST robtarget pSide := " + side.text + ";\n"
+                             "  PERS robtarget pNow := " + unset + ";\n"
+                             "  PERS robtarget pFlange := " + unset + ";\n"
+                             "  PROC main()\n"
+                             "    MoveL pHome, vPrint, fine, tPla \\WObj:=wBed;\n"
+                             "    MoveL pSide, vPrint, fine, tPla \\WObj:=wBed;\n"
+                             "    pNow := CRobT(\\Tool:=tPla \\WObj:=wBed);\n"
+                             "    pFlange := CRobT();\n"
+                             "    MoveL Offs(CRobT(\\Tool:=tPla \\WObj:=wBed), 0, 0, 5), vPrint, "
+                             "fine, tPla \\WObj:=wBed;\n"
+                             "  ENDPROC\n"
+                             "ENDMODULE\n");
+    ASSERT_EQ(s.state, TaskState::stopped) << s.error;
+
+    // The PLA TCP in the bed frame where the robot stood, with the IK's confdata.
+    const auto now = abb::rapid::to_robtarget(task.read_data("M", "pNow"));
+    ASSERT_TRUE(now);
+    EXPECT_LT((now->trans_mm - side_mm).norm(), 1e-6);
+    const Eigen::Quaterniond print_rot(abb::print_orientation(cell.head, abb::Nozzle::pla));
+    EXPECT_NEAR(std::abs(now->rot.dot(print_rot)), 1, 1e-9);
+    const auto want = abb::confdata(cell.model().geometry, side.joints);
+    EXPECT_EQ(now->conf.cf1, want.cf1);
+    EXPECT_EQ(now->conf.cf4, want.cf4);
+    EXPECT_EQ(now->conf.cf6, want.cf6);
+    EXPECT_EQ(now->conf.cfx, want.cfx);
+    // No \Tool, no \WObj: tool0 in wobj0, the flange in the base frame.
+    const auto flange = abb::rapid::to_robtarget(task.read_data("M", "pFlange"));
+    ASSERT_TRUE(flange);
+    const Eigen::Isometry3d fk = abb::forward_kinematics(cell.model().geometry, side.joints);
+    EXPECT_LT((flange->trans_mm - fk.translation()).norm(), 1e-6);
+
+    // The lift: 5 mm straight up from there, orientation kept.
+    const auto trajectory = motion.take_trajectory();
+    std::size_t lift_samples = 0;
+    for (const TrajectorySample& t : trajectory) {
+        if (t.segment != 3) continue;
+        ++lift_samples;
+        EXPECT_NEAR(t.tcp_wobj_mm.x(), side_mm.x(), 1e-6);
+        EXPECT_NEAR(t.tcp_wobj_mm.y(), side_mm.y(), 1e-6);
+        EXPECT_GE(t.tcp_wobj_mm.z(), side_mm.z() - 1e-6);
+    }
+    EXPECT_GT(lift_samples, 5u);
+    EXPECT_LT((motion.current().tcp_wobj_mm - (side_mm + Eigen::Vector3d(0, 0, 5))).norm(), 1e-6);
 }
 
 TEST_F(RapidTaskMotion, StartLoadWaitLoadLateCallAndUnLoad) {

@@ -62,6 +62,10 @@ class MotionPlan {
     // Finished, or dropped by ClearPath / halt().
     bool done(std::uint64_t id) const;
     TrajectorySample current() const;  // the robot at time()
+    // CRobT: the robot at time() as a robtarget of `tool` in `wobj`.
+    rapid::Robtarget robtarget(const rapid::ToolData& tool, const rapid::WobjData& wobj) const {
+        return robtarget_of(pose_now(), tool, wobj, robot_.geometry);
+    }
     // Counts the changes status() waiters care about: starts, stops, finished segments.
     std::uint64_t changes() const { return changes_; }
     std::vector<TrajectorySample> take_trajectory() { return recorder_.take(); }

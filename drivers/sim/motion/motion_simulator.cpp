@@ -191,6 +191,12 @@ TrajectorySample MotionSimulator::current() const {
     return impl_->plan.current();
 }
 
+rapid::Robtarget MotionSimulator::robtarget(const rapid::ToolData& tool,
+                                            const rapid::WobjData& wobj) const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->plan.robtarget(tool, wobj);
+}
+
 std::vector<TrajectorySample> MotionSimulator::take_trajectory() {
     std::lock_guard lock(impl_->mutex);
     return impl_->plan.take_trajectory();

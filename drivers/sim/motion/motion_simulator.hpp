@@ -136,6 +136,9 @@ class MotionSimulator {
 
     // The robot at the motion thread's last tick.
     TrajectorySample current() const;
+    // CRobT: the robot at the motion thread's last tick as a robtarget of `tool` in `wobj` (the
+    // confdata of its joints).
+    rapid::Robtarget robtarget(const rapid::ToolData& tool, const rapid::WobjData& wobj) const;
     // Every recorded sample since start-up (or since the last take), oldest first: one every
     // record_period_s while a motion is under way, one at its start, at every segment end and
     // at every standstill. Memory grows until taken: the owner drains it (see max_samples).

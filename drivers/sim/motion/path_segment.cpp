@@ -79,9 +79,8 @@ PathSegment solve_segment(const MotionSegment& move, const RobotPose& from,
         throw error("cfx " + std::to_string(cfx) + " is not 0..7");
 
     PathSegment seg{.source = move.source, .stop_point = move.zone.finep};
-    seg.tool = to_isometry(move.tool.tframe.trans_mm, move.tool.tframe.rot);
-    seg.wobj =
-        to_isometry(w.uframe.trans_mm, w.uframe.rot) * to_isometry(w.oframe.trans_mm, w.oframe.rot);
+    seg.tool = tool_frame(move.tool);
+    seg.wobj = wobj_frame(w);
     const Eigen::Isometry3d target_in_wobj = to_isometry(target.trans_mm, target.rot);
 
     abb::JointSolverOptions options = solver;
@@ -137,6 +136,25 @@ PathSegment solve_segment(const MotionSegment& move, const RobotPose& from,
                                 (a.position_mm == b.position_mm && a.at_start && !b.at_start);
                      });
     return seg;
+}
+
+Eigen::Isometry3d tool_frame(const rapid::ToolData& tool) {
+    return to_isometry(tool.tframe.trans_mm, tool.tframe.rot);
+}
+
+Eigen::Isometry3d wobj_frame(const rapid::WobjData& wobj) {
+    return to_isometry(wobj.uframe.trans_mm, wobj.uframe.rot) *
+           to_isometry(wobj.oframe.trans_mm, wobj.oframe.rot);
+}
+
+rapid::Robtarget robtarget_of(const RobotPose& pose, const rapid::ToolData& tool,
+                              const rapid::WobjData& wobj, const abb::OpwParameters& geometry) {
+    const Eigen::Isometry3d tcp = wobj_frame(wobj).inverse(Eigen::Isometry) * pose.flange() *
+                                  tool_frame(tool);
+    const abb::ConfData c = abb::confdata(geometry, pose.joints);
+    return {.trans_mm = tcp.translation(),
+            .rot = Eigen::Quaterniond(tcp.linear()),
+            .conf = {.cf1 = c.cf1, .cf4 = c.cf4, .cf6 = c.cf6, .cfx = c.cfx}};
 }
 
 }  // namespace fibrecell::drivers::sim

@@ -76,4 +76,13 @@ struct PathSegment {
 PathSegment solve_segment(const MotionSegment& move, const RobotPose& from,
                           const abb::RobotModel& robot, const abb::JointSolverOptions& solver);
 
+// The frames of RAPID tool and work object data: tool0 -> TCP, base -> object frame [mm].
+Eigen::Isometry3d tool_frame(const rapid::ToolData& tool);
+Eigen::Isometry3d wobj_frame(const rapid::WobjData& wobj);
+
+// CRobT: the robot at `pose` as a robtarget of `tool` in `wobj`, with the confdata of its joints.
+// Any tool will do: its TCP is computed from the flange where the robot stands.
+rapid::Robtarget robtarget_of(const RobotPose& pose, const rapid::ToolData& tool,
+                              const rapid::WobjData& wobj, const abb::OpwParameters& geometry);
+
 }  // namespace fibrecell::drivers::sim

@@ -145,6 +145,7 @@ std::optional<RapidTask::Impl::Value> RapidTask::Impl::call_function(const rapid
     if (name == "dinput" || name == "ginput" || name == "doutput" || name == "goutput" ||
         name == "ainput" || name == "aoutput")
         return rapid::num_value(read_signal(signal_name(one_arg()), line));
+    if (name == "crobt") return current_robtarget(f, line);
     if (name == "isfile") return rapid::bool_value(read_file(eval_string(one_arg()), line).has_value());
     if (name == "present") {
         const Expr& a = one_arg();
@@ -162,6 +163,26 @@ std::optional<RapidTask::Impl::Value> RapidTask::Impl::call_function(const rapid
     auto v = call_routine(module, *routine, f.args, line);
     if (!v) throw RuntimeError(line, "FUNC " + routine->name + " ended without RETURN");
     return v;
+}
+
+// CRobT(\Tool \WObj): where the robot is now, as a robtarget of the tool in the work object
+// (tool0 and wobj0 when not given). Exact once the robot stands still, as after a stop point.
+RapidTask::Impl::Value RapidTask::Impl::current_robtarget(const rapid::FunctionCall& f,
+                                                          std::size_t line) {
+    if (!rapid::positional_args(f.args).empty())
+        throw RuntimeError(line, "CRobT takes only \\Tool and \\WObj");
+    for (const rapid::Argument& a : f.args)
+        if (!rapid::same_name(a.name, "Tool") && !rapid::same_name(a.name, "WObj"))
+            throw RuntimeError(line, "CRobT: \\" + a.name + " is not executed");
+    auto data = [&](const char* arg, const char* fallback) {
+        const rapid::Argument* a = rapid::find_optional(f.args, arg);
+        return a != nullptr && a->value ? eval(*a->value) : *find_slot(fallback)->value;
+    };
+    const auto tool = rapid::to_tooldata(data("Tool", "tool0"));
+    const auto wobj = rapid::to_wobjdata(data("WObj", "wobj0"));
+    if (!tool) throw RuntimeError(line, "CRobT: \\Tool is not a tooldata");
+    if (!wobj) throw RuntimeError(line, "CRobT: \\WObj is not a wobjdata");
+    return rapid::to_value(motion.robtarget(*tool, *wobj));
 }
 
 // ---- Calls -------------------------------------------------------------------------------------

@@ -153,6 +153,7 @@ struct RapidTask::Impl {
     rapid_exec::Slot resolve(const Expr& target);
     Value eval(const Expr& e);
     std::optional<Value> call_function(const abb::rapid::FunctionCall& f, std::size_t line);
+    Value current_robtarget(const abb::rapid::FunctionCall& f, std::size_t line);
     std::string located(std::size_t line, const std::string& message);
 
     // ---- instruction helpers (io_instructions.cpp) ----
