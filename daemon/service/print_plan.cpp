@@ -64,9 +64,12 @@ PrintPlan load_print_plan(const std::filesystem::path& job_file, const std::file
             p.first_event = static_cast<std::int64_t>(p.program.events.size()) + 1;
         }
     }
+    // A re-entry first lifts straight up by the travel clearance, wherever the robot was held.
     const abb::RapidOutput rapid =
-        first_move == 0 ? abb::write_rapid_chunks(p.program, robot)
-                        : abb::write_rapid_chunks(reentry_program(p.program, *p.resume), robot);
+        first_move == 0
+            ? abb::write_rapid_chunks(p.program, robot)
+            : abb::write_rapid_chunks(reentry_program(p.program, *p.resume), robot,
+                                      {.reentry_lift_mm = robot.motion.safe_height_mm});
     for (const abb::RapidModule& m : rapid.modules) p.chunks.push_back({m.file_name, m.text});
     return p;
 }

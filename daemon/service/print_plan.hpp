@@ -42,9 +42,10 @@ drivers::abb::PrintProgram program_tail(const drivers::abb::PrintProgram& progra
                                         std::size_t first_move, std::int64_t first_event = 1);
 
 // The program of a run that re-enters at `resume`. The robot stands where it was held, somewhere
-// in the interrupted unit at that layer's height: the run's first move is a MoveL up to the
-// unit's travel point above its path start (where the whole program's travel there ends), then
-// the approach comes straight down; the robot never moves sideways at the layer's height.
+// in the interrupted unit at that layer's height. Its chunks (load_print_plan) first lift it
+// straight up by the travel clearance; this program's first move is then a MoveL to the unit's
+// travel point above its path start (where the whole program's travel there ends), and the
+// approach comes straight down: the robot never moves sideways at the layer's height.
 drivers::abb::PrintProgram reentry_program(const drivers::abb::PrintProgram& program,
                                            const jobs::ResumePoint& resume);
 

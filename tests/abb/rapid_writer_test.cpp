@@ -576,3 +576,36 @@ TEST(RapidWriter, WritesConfLAndTheSignalNamesFromTheConfig) {
     EXPECT_NE(g.output.modules[0].text.find("ConfL \\On;"), std::string::npos);
     EXPECT_NE(g.output.modules[0].text.find("\\GOp:=goPrintEvent, 2;"), std::string::npos);
 }
+
+TEST(RapidWriter, ReentryLiftOpensTheFirstChunkOnly) {
+    const RobotCellConfig cell;
+    const PrintProgram program = build_print_program(two_layers(), cell, {});
+    const int limit = 60;
+    const RapidOutput out = write_rapid_chunks(program, cell, {.max_lines = limit, .reentry_lift_mm = 5});
+    ASSERT_GE(out.modules.size(), 2u);
+    // Straight up 5 mm from wherever the robot stands, before the program's first move (a travel
+    // with the PLA tool), and nothing else added.
+    const std::string& first = out.modules[0].text;
+    const std::string lift =
+        "    ConfL \\Off;\n"
+        "    ! re-entry: straight up from where the robot was held\n"
+        "    MoveL Offs(CRobT(\\Tool:=tFcPla \\WObj:=wFcBed),0,0,5), vFcTravel, fine, tFcPla "
+        "\\WObj:=wFcBed;\n"
+        "    MoveJ [";
+    EXPECT_NE(first.find(lift), std::string::npos) << first;
+    std::size_t moves = 0;
+    for (const RapidModule& m : out.modules) {
+        const rapid::CheckResult check =
+            rapid::check_module(m.text, validate_options(cell, m.file_name, limit));
+        for (const auto& d : check.diagnostics) ADD_FAILURE() << rapid::format(d);
+        EXPECT_EQ(m.lines, static_cast<std::size_t>(std::count(m.text.begin(), m.text.end(), '\n')));
+        EXPECT_LE(m.lines, static_cast<std::size_t>(limit));
+        EXPECT_EQ(m.text.find("CRobT"), &m == &out.modules[0] ? first.find("CRobT") : std::string::npos);
+        moves += m.end_move - m.first_move;
+    }
+    EXPECT_EQ(moves, program.moves.size());
+    // Without the option the same program starts at its first move.
+    const RapidOutput plain = write_rapid_chunks(program, cell, {.max_lines = limit});
+    EXPECT_EQ(plain.modules[0].text.find("CRobT"), std::string::npos);
+    EXPECT_THROW(write_rapid_chunks(program, cell, {.reentry_lift_mm = -1}), RapidWriteError);
+}

@@ -3,13 +3,18 @@
 // real devices, and fibrecelld drives them through its real drivers. The service is killed with
 // SIGKILL in the middle of the print and started again: the job comes back interrupted with its
 // last confirmed event, resumes at the start of the interrupted unit and completes, and neither
-// the journal nor the board's log shows anything before the re-entry done twice.
+// the journal nor the board's log shows anything before the re-entry done twice. The simulated
+// robot's recorded trajectory shows the resumed run lift straight up from where it was held.
 #include "service_fixture.hpp"
 
 #include <gmock/gmock.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <set>
+#include <thread>
+#include <vector>
 
 using namespace fibrecell;
 using namespace fibrecell::test;
@@ -22,6 +27,52 @@ struct Journal {
     std::vector<std::int64_t> before_resume, after_resume;  // confirmed sequences per run
     std::int64_t resume_first_event = 0;
 };
+
+// A row of fibrecell-simcell's --trajectory CSV.
+struct TrajectoryRow {
+    double t_s = 0, x = 0, y = 0, z = 0, path = 0, speed = 0;
+    std::uint64_t segment = 0;
+};
+
+std::vector<TrajectoryRow> read_trajectory(const fs::path& p) {
+    std::vector<TrajectoryRow> rows;
+    std::ifstream in(p);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        TrajectoryRow r;
+        unsigned long long segment = 0;
+        if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%llu", &r.t_s, &r.x, &r.y, &r.z,
+                        &r.path, &r.speed, &segment) != 7)
+            break;  // a row being written
+        r.segment = segment;
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+// Rows recorded so far, once the robot has stood still long enough for them all to be written.
+std::size_t settled_rows(const fs::path& p) {
+    std::size_t rows = read_trajectory(p).size();
+    for (int i = 0; i < 100; ++i) {
+        std::this_thread::sleep_for(300ms);
+        const std::size_t now = read_trajectory(p).size();
+        if (now == rows) break;
+        rows = now;
+    }
+    return rows;
+}
+
+// The journal's last confirmed event is a fibre start numbered `at_least` or later.
+bool laying_fibre_after(const fs::path& p, std::int64_t at_least) {
+    std::ifstream in(p);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.find("\"confirmed\"") != std::string::npos && line.back() == '}') last = line;
+    if (last.empty()) return false;
+    const json r = json::parse(last);
+    return r.value("kind", "") == "fibre_start" && r.value("seq", std::int64_t{0}) >= at_least;
+}
 
 Journal read_journal(const fs::path& p) {
     Journal j;
@@ -47,8 +98,10 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
                         "--residency-s", "0.5", "--log", board_log.string()},
                        dir_ / "mock.log");
     ASSERT_TRUE(board.wait_for_log("port ", 10s)) << board.log();
+    const fs::path trajectory = dir_ / "trajectory.csv";
     ChildProcess robot(bin + "/tools/fibrecell-simcell/fibrecell-simcell",
-                       {"--time-scale", std::to_string(time_scale)}, dir_ / "simcell.log");
+                       {"--time-scale", std::to_string(time_scale), "--trajectory", trajectory.string()},
+                       dir_ / "simcell.log");
     ASSERT_TRUE(robot.wait_for_log("modbus=", 20s)) << robot.log();
     // "fibrecell-simcell: rws=<port> modbus=<port>" (no std::regex: GCC 12 -O2 + ASan warns in it)
     const std::string banner = robot.log();
@@ -59,7 +112,7 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
         << banner;
     const std::string extra = "extruder: {link: {port: " + (dir_ / "ttyGT2560").string() + "}}\n" +
                               "rws: {port: " + std::to_string(rws_port) + "}\n" +
-                              "print: {heartbeat_timeout_s: 1}\n";
+                              "print: {heartbeat_timeout_s: 0.3}\n";
     std::string config_text = read_file(write_config(extra, time_scale));
     const auto replace = [&](const std::string& from, const std::string& to) {
         const auto pos = config_text.find(from);
@@ -77,15 +130,14 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
         auto c = client();
         id = submit_bar(c, true);
         ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing") << service_->log();
-        // Well into the print, then the plug is pulled.
-        json job;
+        events = c.call("job.get", {{"job", id}})["print"].value("events", std::int64_t{0});
+        // Well into the print, with the robot laying a fibre (threaded, moving along the path):
+        // then the plug is pulled. FcMain holds the robot on the lost heartbeat, in that path.
+        const fs::path journal = state_dir() / "jobs" / std::to_string(id) / "journal.jsonl";
         const auto end = std::chrono::steady_clock::now() + 120s;
-        do {
-            job = c.call("job.get", {{"job", id}});
-            std::this_thread::sleep_for(20ms);
-        } while (job.value("last_confirmed_event", std::int64_t{0}) < 12 && std::chrono::steady_clock::now() < end);
-        events = job["print"].value("events", std::int64_t{0});
-        ASSERT_GE(job.value("last_confirmed_event", std::int64_t{0}), 12) << job.dump(2);
+        while (!laying_fibre_after(journal, 12) && std::chrono::steady_clock::now() < end)
+            std::this_thread::sleep_for(2ms);
+        ASSERT_TRUE(laying_fibre_after(journal, 12)) << read_file(journal);
     }
     service_->kill_now();
 
@@ -95,6 +147,7 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     ASSERT_EQ(interrupted.value("state", ""), "interrupted") << interrupted.dump(2);
     const auto last = interrupted.value("last_confirmed_event", std::int64_t{0});
     EXPECT_GE(last, 12);
+    const std::size_t held_rows = settled_rows(trajectory);
     ASSERT_EQ(c.call("job.resume", {{"job", id}}).value("state", ""), "starting");
     const json done = wait_for_state(c, id, "completed", 180s);
     ASSERT_EQ(done.value("state", ""), "completed") << done.dump(2) << "\n" << service_->log();
@@ -120,5 +173,29 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     for (std::size_t at = 0; (at = log.find("M42 P11 S255", at)) != std::string::npos; ++at) ++cuts;
     for (std::size_t at = 0; (at = log.find("G1 E42.00000", at)) != std::string::npos; ++at) ++threads;
     EXPECT_LE(threads, cuts + 1);
+
+    // The robot: the resumed run's first motion is the lift, straight up by the travel clearance
+    // (5 mm) from where the robot was held; the next one leaves that height upwards or level.
+    const std::vector<TrajectoryRow> rows = read_trajectory(trajectory);
+    ASSERT_GT(rows.size(), held_rows);
+    const std::vector<TrajectoryRow> resumed(rows.begin() + static_cast<std::ptrdiff_t>(held_rows), rows.end());
+    const auto first_moving = std::find_if(resumed.begin(), resumed.end(), [](const auto& r) { return r.speed > 0; });
+    ASSERT_NE(first_moving, resumed.end());
+    ASSERT_NE(first_moving, resumed.begin());
+    const TrajectoryRow held = *std::prev(first_moving);
+    std::vector<TrajectoryRow> lift;
+    for (auto it = first_moving; it != resumed.end() && it->segment == first_moving->segment; ++it) lift.push_back(*it);
+    ASSERT_GE(lift.size(), 3u);
+    for (std::size_t i = 0; i < lift.size(); ++i) {
+        EXPECT_NEAR(lift[i].x, lift.front().x, 2e-4) << "lift row " << i;
+        EXPECT_NEAR(lift[i].y, lift.front().y, 2e-4) << "lift row " << i;
+        if (i > 0) {
+            EXPECT_GT(lift[i].z, lift[i - 1].z) << "lift row " << i;
+        }
+    }
+    EXPECT_NEAR(lift.back().path - held.path, 5, 1e-3);
+    std::printf("held at bed (%.3f, %.3f, %.3f) mm; lifted to z %.3f mm\n", held.x, held.y, held.z,
+                lift.back().z);
+    EXPECT_EQ(lift.back().speed, 0);  // a stop point
     EXPECT_TRUE(service_->terminate(20s));
 }

@@ -4,23 +4,31 @@
 //   fibrecell-simcell: rws=<port> modbus=<port>
 // The RWS user, the Modbus map, the signal names and the arm come from the cell YAML's rws:,
 // robot_io: and robot: sections; ports are ephemeral unless given (the YAML's ports are where the
-// service connects to a real cell).
+// service connects to a real cell). With --trajectory, the robot's TCP trajectory is appended to a
+// CSV file as it is recorded (drivers/sim/motion/trajectory_csv.hpp).
 #include "config/logging.hpp"
 #include "config/yaml_section.hpp"
 #include "drivers/abb/cell/robot_config.hpp"
 #include "drivers/abb/modbus/robot_io_config.hpp"
 #include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
+#include "drivers/sim/motion/trajectory_csv.hpp"
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <pthread.h>
 
@@ -56,6 +64,43 @@ std::string default_main_module() {
     return FIBRECELL_DEFAULT_MAIN_MODULE;
 }
 
+// Appends the cell's recorded trajectory to a CSV file every 100 ms (real time) until stopped,
+// then once more. Taking it also keeps the recorder from dropping samples on a long run.
+class TrajectoryFile {
+  public:
+    TrajectoryFile(sim::SimCell& cell, const std::string& path) : cell_(cell), out_(path) {
+        if (!out_) throw std::runtime_error(path + ": cannot write the trajectory");
+        sim::write_trajectory_csv_header(out_);
+        out_.flush();
+        thread_ = std::thread([this] {
+            while (!stop_) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                drain();
+            }
+        });
+    }
+    ~TrajectoryFile() {
+        stop_ = true;
+        thread_.join();
+        drain();
+    }
+    TrajectoryFile(const TrajectoryFile&) = delete;
+    TrajectoryFile& operator=(const TrajectoryFile&) = delete;
+
+  private:
+    void drain() {
+        const auto samples = cell_.take_trajectory();
+        if (samples.empty()) return;
+        sim::write_trajectory_csv_rows(out_, samples);
+        out_.flush();
+    }
+
+    sim::SimCell& cell_;
+    std::ofstream out_;
+    std::atomic<bool> stop_ = false;
+    std::thread thread_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,6 +114,7 @@ int main(int argc, char** argv) {
     std::string main_module = default_main_module();
     bool start = false;
     std::string log_level;
+    std::string trajectory_path;
     app.add_option("--config", config_path, "cell YAML (rws:, robot_io:, robot: sections)")
         ->check(CLI::ExistingFile);
     app.add_option("--time-scale", time_scale, "simulated seconds per real second")
@@ -82,6 +128,8 @@ int main(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     app.add_flag("--start", start, "start RAPID at start-up (otherwise stopped with PP at main)");
     app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
+    app.add_option("--trajectory", trajectory_path,
+                   "append the TCP trajectory to this CSV file as it is recorded");
     CLI11_PARSE(app, argc, argv);
     fibrecell::config::setup_logging(log_level);
 
@@ -106,6 +154,8 @@ int main(int argc, char** argv) {
             spdlog::info("simcell.task t={:.3f}s {}", e.t_s, e.text);
         };
         sim::SimCell cell(std::move(o));
+        std::optional<TrajectoryFile> trajectory;
+        if (!trajectory_path.empty()) trajectory.emplace(cell, trajectory_path);
         spdlog::info("simcell.ready rws={} modbus={} time_scale={}", cell.rws_port(),
                      cell.modbus_port(), time_scale);
         std::cout << "fibrecell-simcell: rws=" << cell.rws_port()

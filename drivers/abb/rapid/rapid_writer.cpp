@@ -183,6 +183,9 @@ class ChunkWriter {
         return 5 + names_.speeds.size() + names_.zones.size() + 2 + trigger_vars_ + 2 + 2;
     }
 
+    // Lines the first chunk adds for a re-entry lift: a comment and the MoveL.
+    std::size_t lift_lines() const { return options_.reentry_lift_mm > 0 ? 2 : 0; }
+
     MoveLines lines_of(std::size_t m) const {
         MoveLines l;
         for (std::size_t i = events_of_move_[m]; i < events_of_move_[m + 1]; ++i)
@@ -248,6 +251,7 @@ class ChunkWriter {
             t += "    VAR triggdata tgFc" + std::to_string(i) + ";\n";
         t += "    ConfJ \\On;\n";
         t += cell_.rapid.confl ? "    ConfL \\On;\n" : "    ConfL \\Off;\n";
+        if (number == 1 && lift_lines() > 0) write_lift(t, program_.moves[first]);
         for (std::size_t m = first; m < end; ++m) write_move(t, m);
         t += "  ENDPROC\n";
         t += "ENDMODULE\n";
@@ -256,6 +260,17 @@ class ChunkWriter {
     }
 
   private:
+    // Straight up from wherever the robot was held, keeping its orientation, with the tool and
+    // speed of the program's first move: CRobT with any tool gives the flange's pose, and a pure
+    // translation of one TCP is one of the flange.
+    void write_lift(std::string& t, const ProgramMove& first) const {
+        const std::string tool = tool_name(first.nozzle);
+        t += "    ! re-entry: straight up from where the robot was held\n";
+        t += "    MoveL Offs(CRobT(\\Tool:=" + tool + " \\WObj:=wFcBed),0,0,";
+        append_number(t, options_.reentry_lift_mm);
+        t += "), " + names_.speeds.at(first.speed_mm_s) + ", fine, " + tool + " \\WObj:=wFcBed;\n";
+    }
+
     void write_move(std::string& t, std::size_t mi) const {
         const ProgramMove& m = program_.moves[mi];
         const std::string& signal = cell_.signals.event;
@@ -359,7 +374,7 @@ std::vector<std::pair<std::size_t, std::size_t>> split_chunks(const PrintProgram
     };
     std::size_t first = 0;
     while (first < n) {
-        std::size_t lines = overhead, last_boundary = 0;
+        std::size_t lines = overhead + (first == 0 ? writer.lift_lines() : 0), last_boundary = 0;
         bool have_boundary = false;
         std::size_t m = first;
         for (; m < n; ++m) {
@@ -394,6 +409,10 @@ std::vector<std::pair<std::size_t, std::size_t>> split_chunks(const PrintProgram
 RapidOutput write_rapid_chunks(const PrintProgram& program, const RobotCellConfig& cell,
                                const RapidWriterOptions& options) {
     RapidOutput out;
+    if (!(options.reentry_lift_mm >= 0 && options.reentry_lift_mm < 1000))
+        throw RapidWriteError("re-entry lift " + std::to_string(options.reentry_lift_mm) +
+                                  " mm is not 0..1000",
+                              0, -1, -1, -1);
     if (program.moves.empty()) return out;
     out.joints = solve_moves(program, cell, options);
     const ChunkWriter writer(program, cell, options, out.joints);

@@ -29,6 +29,10 @@ struct RapidWriterOptions {
     std::string job_name;        // for the header comment (non-ASCII and quotes are dropped)
     int max_lines = 0;           // per chunk; 0: the cell's rapid.max_chunk_lines
     JointVector start_joints{};  // joints before the first move [rad]: the first J4/J6 reference
+    // A run that re-enters an interrupted print: > 0 starts the first chunk with a straight lift
+    // this far up [mm] from wherever the robot stands, MoveL Offs(CRobT(..), 0, 0, lift), before
+    // the program's first move. 0: none.
+    double reentry_lift_mm = 0;
 };
 
 struct RapidModule {
