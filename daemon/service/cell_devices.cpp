@@ -23,6 +23,8 @@ std::unique_ptr<drivers::sim::MockGt2560> make_mock_board(const CellConfig& cell
     o.residency_s = cell.simulation.residency_s;
     o.bootloader_s = 0.5;
     o.link_path = link.string();
+    o.max_log = 10'000;  // observed by nobody in the service: bounded so that job after job
+                         // does not grow the service's memory
     return std::make_unique<drivers::sim::MockGt2560>(o);
 }
 
@@ -34,6 +36,7 @@ std::unique_ptr<drivers::sim::SimCell> make_sim_cell(const CellConfig& cell) {
     o.io_map = cell.robot_io.map;
     o.signals = cell.robot.signals;
     o.main_module = resolve_main_module(cell.simulation.main_module);
+    o.motion.max_samples = 10'000;  // the trajectory is not read in the service: kept small
     o.on_task_log = [](const drivers::sim::TaskLogEntry& e) { spdlog::info("simcell.task {}", e.text); };
     return std::make_unique<drivers::sim::SimCell>(o);
 }

@@ -121,8 +121,9 @@ struct MockGt2560::Impl {
     std::optional<int> runaway;
     std::vector<std::string> actions;
 
-    std::vector<ExecutedCommand> executed;
-    std::vector<PinEvent> pins;
+    std::deque<ExecutedCommand> executed;
+    std::deque<PinEvent> pins;
+    std::size_t executed_dropped = 0;  // the oldest, past o.max_log
     std::uint64_t dropped = 0;
 
     double now() const {
@@ -373,7 +374,12 @@ struct MockGt2560::Impl {
     // --- Executing commands ----------------------------------------------------------
 
     void finish(Exec& e, double t) {
-        executed.push_back({t, e.line, e.text, e.move_start_s, e.move_end_s});
+        executed.push_back({t, e.line, e.text, e.move_start_s, e.move_end_s,
+                            executed_dropped + executed.size()});
+        if (o.max_log > 0 && executed.size() > o.max_log) {
+            executed.pop_front();
+            ++executed_dropped;
+        }
         cv.notify_all();
         if (e.line && delay.count(*e.line)) {
             e.wait = Wait::ok_delay;
@@ -400,6 +406,7 @@ struct MockGt2560::Impl {
 
     void pin_event(const std::string& text, double t) {
         pins.push_back({t, text, static_cast<int>(planner.size()), last_move_end});
+        if (o.max_log > 0 && pins.size() > o.max_log) pins.pop_front();
     }
 
     void begin(Exec& e, double t) {
@@ -730,15 +737,21 @@ void MockGt2560::send_action(const std::string& action) {
 
 std::vector<ExecutedCommand> MockGt2560::executed() const {
     std::lock_guard lock(impl_->mu);
-    return impl_->executed;
+    return {impl_->executed.begin(), impl_->executed.end()};
+}
+std::vector<ExecutedCommand> MockGt2560::executed_since(std::size_t first) const {
+    std::lock_guard lock(impl_->mu);
+    const std::size_t skip = first > impl_->executed_dropped ? first - impl_->executed_dropped : 0;
+    if (skip >= impl_->executed.size()) return {};
+    return {impl_->executed.begin() + static_cast<std::ptrdiff_t>(skip), impl_->executed.end()};
 }
 std::size_t MockGt2560::executed_count() const {
     std::lock_guard lock(impl_->mu);
-    return impl_->executed.size();
+    return impl_->executed_dropped + impl_->executed.size();
 }
 std::vector<PinEvent> MockGt2560::pin_events() const {
     std::lock_guard lock(impl_->mu);
-    return impl_->pins;
+    return {impl_->pins.begin(), impl_->pins.end()};
 }
 double MockGt2560::temperature_c(int heater) const {
     std::lock_guard lock(impl_->mu);
@@ -754,7 +767,9 @@ std::uint64_t MockGt2560::rx_bytes_dropped() const {
 }
 bool MockGt2560::wait_for_executed(std::size_t n, std::chrono::milliseconds timeout) const {
     std::unique_lock lock(impl_->mu);
-    return impl_->cv.wait_for(lock, timeout, [&] { return impl_->executed.size() >= n; });
+    return impl_->cv.wait_for(lock, timeout, [&] {
+        return impl_->executed_dropped + impl_->executed.size() >= n;
+    });
 }
 
 }  // namespace fibrecell::drivers::sim

@@ -10,6 +10,7 @@
 // onto them), never in-band G-code. All times in the logs are simulated seconds.
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -35,6 +36,9 @@ struct MockGt2560Options {
     double residency_s = 10.0;        // TEMP_RESIDENCY_TIME
     double keepalive_s = 2.0;         // DEFAULT_KEEPALIVE_INTERVAL
     std::string link_path;            // optional stable symlink to the slave (survives replug)
+    // Executed commands and pin events kept for observation, each; 0: all. A board that runs for
+    // long (in the service, the mock-gt2560 tool) keeps a bound: the oldest are dropped.
+    std::size_t max_log = 0;
 };
 
 struct ExecutedCommand {
@@ -43,6 +47,7 @@ struct ExecutedCommand {
     std::string text;                 // the command without N and checksum
     // A G0/G1 runs later, when the planner gets to it: its motion's start and end [simulated s].
     std::optional<double> move_start_s, move_end_s;
+    std::size_t number = 0;           // 0, 1, ... in the order commands executed
 };
 
 // M42 / M280 / M3 / M5 as they took effect, with the planner state at that moment.
@@ -82,9 +87,11 @@ class MockGt2560 {
     void thermal_runaway(int heater);       // 0, 1 = hotends, 2 = bed
     void send_action(const std::string& action);  // "//action:<action>"
 
-    // Observation.
+    // Observation. Commands are numbered 0, 1, ... in the order they executed; executed_count()
+    // counts them all, executed() and executed_since() return those still kept (max_log).
     std::vector<ExecutedCommand> executed() const;
     std::size_t executed_count() const;
+    std::vector<ExecutedCommand> executed_since(std::size_t first) const;
     std::vector<PinEvent> pin_events() const;
     double temperature_c(int heater) const;
     bool killed() const;

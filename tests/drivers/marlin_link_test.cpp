@@ -224,6 +224,31 @@ TEST_F(MarlinLinkTest, MovesRunBackToBackAfterTheirOks) {
     EXPECT_FALSE(log[log.size() - 3].move_start_s);  // M83 is no move
 }
 
+TEST_F(MarlinLinkTest, ABoundedLogKeepsTheNewestAndCountsThemAll) {
+    sim::MockGt2560Options mo;
+    mo.max_log = 5;
+    start(mo);
+    const std::size_t before = mock_->executed_count();  // the handshake's
+    ASSERT_GE(before, 3u);
+    ASSERT_TRUE(finish(link_.submit(numbered_job(12))).ok());
+    const std::vector<std::string> job = numbered_job(12);
+    EXPECT_EQ(mock_->executed_count(), before + 12);
+    // The last five, numbered in the order they ran.
+    const auto log = mock_->executed();
+    ASSERT_EQ(log.size(), 5u);
+    for (std::size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(log[i].text, job[7 + i]);
+        EXPECT_EQ(log[i].number, before + 7 + i);
+    }
+    // From a number still kept; from one dropped: what is kept; past the end: nothing.
+    const auto since = mock_->executed_since(before + 10);
+    ASSERT_EQ(since.size(), 2u);
+    EXPECT_EQ(since[0].text, job[10]);
+    EXPECT_EQ(mock_->executed_since(0).size(), 5u);
+    EXPECT_TRUE(mock_->executed_since(before + 12).empty());
+    EXPECT_TRUE(mock_->wait_for_executed(before + 12, 0ms));
+}
+
 TEST_F(MarlinLinkTest, ResetMidJobFailsTheJobAndNeverRenumbers) {
     start();
     mock_->reset_at_line(50);

@@ -306,7 +306,8 @@ TEST(SimCell, BarrierHoldsTheRobotUntilTheServiceReleasesIt) {
     s.hold = [&](std::uint16_t b) { return b == held; };
     ASSERT_TRUE(s.until_event(held, 20000ms)) << s.describe();
     EXPECT_EQ(s.events.back(), held);
-    EXPECT_EQ(r.io.snapshot().barrier, held);
+    // The link publishes its snapshot just after it hands out the change.
+    EXPECT_TRUE(s.until([&] { return r.io.snapshot().barrier == held; }, 1000ms));
     EXPECT_EQ(r.fc.status().barrier, held);
     // Held: standing, and nothing further happens (0.15 s real = 6 s simulated).
     EXPECT_TRUE(stands_still(r.cell, 150ms));

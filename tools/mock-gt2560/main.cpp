@@ -29,9 +29,10 @@ void write_log(const fibrecell::drivers::sim::MockGt2560& mock, const std::strin
     std::size_t written = 0;
     for (;;) {
         const bool last = done.load();
-        const auto log = mock.executed();
-        for (; written < log.size(); ++written)
-            out << log[written].t_s << '\t' << log[written].text << '\n';
+        for (const auto& c : mock.executed_since(written)) {
+            out << c.t_s << '\t' << c.text << '\n';
+            written = c.number + 1;
+        }
         out.flush();
         if (last) return;
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -42,6 +43,7 @@ void write_log(const fibrecell::drivers::sim::MockGt2560& mock, const std::strin
 
 int main(int argc, char** argv) {
     fibrecell::drivers::sim::MockGt2560Options o;
+    o.max_log = 100'000;  // the --log file has them all; memory stays bounded on a long run
     CLI::App app{"Mock GT2560 (Marlin) on a pseudo-terminal"};
     app.add_option("--link", o.link_path, "symlink to create for the port (stable across replug)");
     app.add_option("--time-scale", o.time_scale, "simulated seconds per real second")->check(CLI::PositiveNumber);
