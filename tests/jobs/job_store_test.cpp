@@ -4,8 +4,7 @@
 #include "daemon/jobs/job_store.hpp"
 
 #include "daemon/jobs/durable_file.hpp"
-#include "planner/io/vtk_writer.hpp"
-#include "planner/mesh/structured_mesh.hpp"
+#include "job_test_files.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,26 +14,16 @@
 
 using namespace fibrecell;
 using namespace fibrecell::daemon::jobs;
+using fibrecell::test::read_file;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class JobStoreTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-jobstore-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = test::fresh_test_dir("fibrecell-jobstore");
         // A tiny stressed box: submission checks the job file, nothing is planned.
         const auto mesh = planner::structured_tet_mesh({.size = {10, 10, 2}, .cells = {1, 1, 1}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(),

@@ -3,8 +3,7 @@
 // `fibrecell plan` writing the same toolpaths as the library.
 #include "daemon/jobs/plan_job.hpp"
 
-#include "planner/io/vtk_writer.hpp"
-#include "planner/mesh/structured_mesh.hpp"
+#include "job_test_files.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 
 #include <gtest/gtest.h>
@@ -16,30 +15,16 @@
 
 using namespace fibrecell;
 using namespace fibrecell::daemon::jobs;
+using fibrecell::test::read_file;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class PlanJobTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-planjob-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        // 50 x 6 x 0.8 mm bar pulled along x: one PLA and one CCF layer of straight fibres.
-        const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 0.8}, .cells = {25, 3, 1}});
-        std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
-        for (auto& s : stress) s(0, 0) = 30.0;
-        planner::write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
+        dir_ = test::fresh_test_dir("fibrecell-planjob");
+        test::write_tension_bar(dir_ / "bar.vtk");
         std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n";
     }
     void TearDown() override { fs::remove_all(dir_); }

@@ -3,8 +3,7 @@
 // queued plan, and a shutdown leaves the job to be planned again after the restart.
 #include "daemon/jobs/plan_runner.hpp"
 
-#include "planner/io/vtk_writer.hpp"
-#include "planner/mesh/structured_mesh.hpp"
+#include "job_test_files.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -20,32 +19,19 @@
 
 using namespace fibrecell;
 using namespace fibrecell::daemon::jobs;
+using fibrecell::test::read_file;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class PlanRunnerTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-planrunner-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        // 50 x 6 x 0.8 mm bar pulled along x; the same mesh without stress cannot be planned.
-        const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 0.8}, .cells = {25, 3, 1}});
-        std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
-        for (auto& s : stress) s(0, 0) = 30.0;
-        planner::write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
-        planner::write_field_vtk((dir_ / "bare.vtk").string(), mesh, {});
+        dir_ = test::fresh_test_dir("fibrecell-planrunner");
+        // The bar, and the same mesh without stress, which cannot be planned.
+        test::write_tension_bar(dir_ / "bar.vtk");
+        test::write_tension_bar(dir_ / "bare.vtk", false);
         bar_.job_yaml = "name: bar\nmodel:\n  mesh: bar.vtk\n";
         bar_.files = {{"bar.vtk", read_file(dir_ / "bar.vtk")}};
         broken_.job_yaml = "name: broken\nmodel:\n  mesh: bare.vtk\n";
