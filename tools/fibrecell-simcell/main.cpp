@@ -4,8 +4,8 @@
 //   fibrecell-simcell: rws=<port> modbus=<port>
 // The RWS user, the Modbus map, the signal names and the arm come from the cell YAML's rws:,
 // robot_io: and robot: sections; ports are ephemeral unless given (the YAML's ports are where the
-// service connects to a real cell). With --trajectory, the robot's TCP trajectory is appended to a
-// CSV file as it is recorded (drivers/sim/motion/trajectory_csv.hpp).
+// service connects to a real cell). With --trajectory, the robot's TCP trajectory is written to a
+// CSV file (created anew) as it is recorded (drivers/sim/motion/trajectory_csv.hpp).
 #include "config/logging.hpp"
 #include "config/yaml_section.hpp"
 #include "drivers/abb/cell/robot_config.hpp"
@@ -64,7 +64,7 @@ std::string default_main_module() {
     return FIBRECELL_DEFAULT_MAIN_MODULE;
 }
 
-// Appends the cell's recorded trajectory to a CSV file every 100 ms (real time) until stopped,
+// Writes the cell's recorded trajectory to a new CSV file, adding rows every 100 ms (real time) until stopped,
 // then once more. Taking it also keeps the recorder from dropping samples on a long run.
 class TrajectoryFile {
   public:
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
     app.add_flag("--start", start, "start RAPID at start-up (otherwise stopped with PP at main)");
     app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
     app.add_option("--trajectory", trajectory_path,
-                   "append the TCP trajectory to this CSV file as it is recorded");
+                   "write the TCP trajectory to this CSV file (replaced) as it is recorded");
     CLI11_PARSE(app, argc, argv);
     fibrecell::config::setup_logging(log_level);
 
