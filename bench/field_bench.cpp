@@ -5,6 +5,7 @@
 //   build/release/bench/field_bench [--reference ../shared/data/reference-fea]
 
 #include "bench_parts.hpp"
+#include "config/durable_file.hpp"
 #include "planner/fea/linear_elastic.hpp"
 #include "planner/field/incompatibility.hpp"
 #include "planner/field/mst_reorientation.hpp"
@@ -115,7 +116,8 @@ void bench_sizes() {
         const std::string path = (std::filesystem::temp_directory_path() /
                                   ("fibrecell-bench-" + std::to_string(row.tets) + ".vtk"))
                                      .string();
-        write_field_vtk(path, mesh, {.stress = &fea.stress}, VtkEncoding::ascii);
+        fibrecell::config::write_file_durably(
+            path, field_vtk_text(mesh, {.stress = &fea.stress}, VtkEncoding::ascii));
         const double mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
         clock.lap();
         const VolumeModel back = read_volume_model(path);

@@ -1,16 +1,18 @@
-// Benchmark of the whole offline plan (read -> written plan directory) against the paper's
-// Table 1: the bundled Loop example and a Shell-sized part (about 112k tets, 12 CCF layers).
+// Benchmark of the whole offline plan (job file -> durable plan directory, exactly what
+// `fibrecell plan` does: daemon/jobs/plan_job) against the paper's Table 1: the bundled Loop
+// example and a Shell-sized part (about 112k tets, 12 CCF layers).
 // Release build:  build/release/bench/plan_bench
 
 #include "bench_parts.hpp"
+#include "config/durable_file.hpp"
+#include "daemon/jobs/plan_job.hpp"
+#include "daemon/jobs/thread_pool.hpp"
 #include "planner/fea/linear_elastic.hpp"
+#include "planner/io/read_model.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
-#include "planner/plan/preview_svg.hpp"
-#include "planner/plan/report.hpp"
-#include "planner/plan/toolpaths_json.hpp"
 #include "planner/stopwatch.hpp"
 
 #include <spdlog/spdlog.h>
@@ -23,6 +25,7 @@
 
 using namespace fibrecell::planner;
 namespace fs = std::filesystem;
+namespace jobs = fibrecell::daemon::jobs;
 
 namespace {
 
@@ -39,24 +42,15 @@ double peak_memory_mb() {
     return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
-// Plans `job` like `fibrecell plan` and writes the plan directory; prints one row.
-void plan_and_print(const char* name, const JobSpec& job, const PaperRow& paper, int threads,
-                    const fs::path& out) {
+// Plans the job file like `fibrecell plan` and writes the plan directory; prints one row.
+void plan_and_print(const char* name, const fs::path& job_file, const PaperRow& paper,
+                    jobs::ThreadPool& pool, const fs::path& out) {
     Stopwatch clock;
-    const FieldStageResult field = run_field_stage(job);
-    const LayerStageResult layers = run_layer_stage(job, field, threads);
-    fs::create_directories(out);
-    write_toolpaths_json((out / "toolpaths.json").string(), "field", layers.layers);
-    std::vector<const TriangleScalars*> none(layers.layers.size(), nullptr);
-    write_preview((out / "preview").string(), layers.layers, layers.outlines, none);
-    write_field_vtk(
-        (out / "field.vtk").string(), field.model.mesh,
-        {&*field.model.stress, &field.field.sigma_e, &field.field.v_e, &field.v_defined});
-    auto report = field_stage_report(job, field);
-    add_layer_stage_report(report, layers);
-    write_json_file((out / "report.json").string(), report);
+    const jobs::PlanJobResult r =
+        jobs::plan_job({.job_file = job_file, .out_dir = out, .executor = &pool});
     const double total = clock.elapsed();
-    const auto& s = layers.stats;
+    const FieldStageResult& field = r.field;
+    const auto& s = r.layers->stats;
     std::printf(
         "%-6s %7zu %2d+%2d | %5.2f %5.2f %6.3f | %6.3f %6.3f %6.3f %6.3f (%6.3f, %4.0fx) | "
         "%6.2f (%7.1f, %4.0fx) | %6.0f | %5.1f m %5.3f\n",
@@ -70,10 +64,11 @@ void plan_and_print(const char* name, const JobSpec& job, const PaperRow& paper,
 // The Loop under the field strategy and the load-independent baseline. The baseline fills every
 // CCF layer, so it is also run on every 4th PLA layer only: about the field strategy's fibre
 // length, the comparison the paper makes (its baseline: 35.9 m).
-void compare_strategies(const JobSpec& loop) {
-    const FieldStageResult field = run_field_stage(loop);
+void compare_strategies(const JobSpec& loop, jobs::ThreadPool& pool) {
+    const FieldStageResult field =
+        run_field_stage(loop, read_volume_model(loop.model.mesh_path, loop.model.stress_path));
     auto row = [&](const char* name, const JobSpec& job) {
-        const LayerStageStats s = run_layer_stage(job, field, 2).stats;
+        const LayerStageStats s = run_layer_stage(job, field, {.executor = &pool}).stats;
         std::printf("%-34s %3d CCF layers %7.1f m  alignment %5.3f  density corr. %6.3f\n", name,
                     s.ccf_layers, s.fibre_length_mm / 1000.0, s.quality.alignment(),
                     s.quality.density_correlation());
@@ -95,7 +90,7 @@ std::string write_shell_sized_part(const fs::path& dir) {
     const TetMesh mesh = fibrecell::bench::loop_like_plate(112080);
     const FeaResult fea = solve_linear_elastic(mesh, fibrecell::bench::end_load(mesh));
     const std::string path = (dir / "shell-sized.vtk").string();
-    write_field_vtk(path, mesh, {.stress = &fea.stress});
+    fibrecell::config::write_file_durably(path, field_vtk_text(mesh, {.stress = &fea.stress}));
     return path;
 }
 
@@ -110,14 +105,16 @@ int main() {
                 "tets", "layers", "fea", "read", "layers", "field", "scalar", "extr.", "conn.",
                 "(paper, ratio)", "total s (paper, ratio)", "MB", "fibre  align");
 
-    const JobSpec loop = load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
-    plan_and_print("Loop", loop, {"Loop", 32473, 8.210, 130.862}, 2, tmp / "loop");
+    jobs::ThreadPool pool({.threads = 2});
+    const fs::path loop_file = FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml";
+    plan_and_print("Loop", loop_file, {"Loop", 32473, 8.210, 130.862}, pool, tmp / "loop");
 
-    compare_strategies(loop);
+    compare_strategies(load_job_file(loop_file.string()), pool);
     const std::string mesh = write_shell_sized_part(tmp);
-    const JobSpec shell =
-        parse_job("name: shell-sized\nmodel:\n  mesh: " + mesh + "\n", "shell.job", tmp.string());
-    plan_and_print("Shell", shell, {"Shell", 112080, 24.077, 758.140}, 2, tmp / "shell");
+    fibrecell::config::write_file_durably(tmp / "shell.job.yaml",
+                                          "name: shell-sized\nmodel:\n  mesh: " + mesh + "\n");
+    plan_and_print("Shell", tmp / "shell.job.yaml", {"Shell", 112080, 24.077, 758.140}, pool,
+                   tmp / "shell");
     fs::remove_all(tmp);
     return 0;
 }

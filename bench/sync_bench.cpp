@@ -101,7 +101,7 @@ int main() {
     xc.retract_mm = 0.05;    // short board moves: the bench measures the host path
     xc.cutter.hold_ms = 1;
     drivers::ExtruderController extruder(xc);
-    board.submit(extruder.prepare(true)).get();
+    board.submit(extruder.prepare({}, true)).get();
 
     drivers::abb::RobotIoServer server(drivers::abb::RobotIoMap{});
     drivers::abb::RobotIoConfig rc;

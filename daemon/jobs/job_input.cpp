@@ -1,7 +1,6 @@
 #include "daemon/jobs/job_input.hpp"
 
-#include "daemon/jobs/durable_file.hpp"
-#include "planner/job/job_spec.hpp"
+#include "config/durable_file.hpp"
 
 #include <set>
 
@@ -44,15 +43,15 @@ void write_job_input(const fs::path& dir, const JobInput& input) {
         if (!names.insert(name).second) throw JobInputError("files[\"" + name + "\"]: given twice");
     }
     fs::create_directories(dir);
-    write_file_durably(dir / job_yaml_name, input.job_yaml);
+    config::write_file_durably(dir / job_yaml_name, input.job_yaml);
     for (const auto& [name, bytes] : input.files) {
         const fs::path path = dir / name;
         fs::create_directories(path.parent_path());
-        write_file_durably(path, bytes);
+        config::write_file_durably(path, bytes);
     }
 }
 
-std::string check_job_input(const fs::path& input_dir, const JobInput& input) {
+planner::JobSpec check_job_input(const fs::path& input_dir, const JobInput& input) {
     const fs::path dir = fs::absolute(input_dir);
     const planner::JobSpec job = planner::parse_job(input.job_yaml, job_yaml_name, dir.string());
     const auto check = [&](const std::string& path, const char* key) {
@@ -62,7 +61,7 @@ std::string check_job_input(const fs::path& input_dir, const JobInput& input) {
     };
     check(job.model.mesh_path, "model.mesh");
     check(job.model.stress_path, "model.stress");
-    return job.name;
+    return job;
 }
 
 }  // namespace fibrecell::daemon::jobs

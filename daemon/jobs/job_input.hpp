@@ -2,6 +2,8 @@
 // A job as submitted (job.submit): the job YAML text and its files inline, already decoded from
 // base64 by the API. The store keeps them as given in the job's input/ folder.
 
+#include "planner/job/job_spec.hpp"
+
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -31,7 +33,7 @@ void write_job_input(const std::filesystem::path& dir, const JobInput& input);
 
 // Reads the job YAML of an input/ folder as the planner will, and checks that the files it names
 // are among the submitted ones (a remote job may not read the service's own files). Returns the
-// job's name. Throws config::ConfigError or JobInputError naming "job.yaml" and the key.
-std::string check_job_input(const std::filesystem::path& input_dir, const JobInput& input);
+// job. Throws config::ConfigError or JobInputError naming "job.yaml" and the key.
+planner::JobSpec check_job_input(const std::filesystem::path& input_dir, const JobInput& input);
 
 }  // namespace fibrecell::daemon::jobs

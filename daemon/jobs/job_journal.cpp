@@ -1,6 +1,6 @@
 #include "daemon/jobs/job_journal.hpp"
 
-#include "daemon/jobs/durable_file.hpp"
+#include "config/durable_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -85,7 +85,7 @@ void repair_journal(const std::filesystem::path& path) {
 }
 
 JobJournal::JobJournal(const std::filesystem::path& path, const JournalSummary& summary)
-    : file_(std::make_unique<DurableAppender>(path)), summary_(summary) {}
+    : file_(std::make_unique<config::DurableAppender>(path)), summary_(summary) {}
 
 JobJournal::~JobJournal() = default;
 

@@ -18,9 +18,11 @@
 #include <mutex>
 #include <stdexcept>
 
-namespace fibrecell::daemon::jobs {
-
+namespace fibrecell::config {
 class DurableAppender;
+}
+
+namespace fibrecell::daemon::jobs {
 
 struct JournalEvent {
     std::int64_t sequence = 0;  // 1-based event number of the print program
@@ -64,7 +66,7 @@ class JobJournal {
 
   private:
     mutable std::mutex mu_;
-    std::unique_ptr<DurableAppender> file_;
+    std::unique_ptr<config::DurableAppender> file_;
     JournalSummary summary_;
 };
 

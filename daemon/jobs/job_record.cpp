@@ -1,8 +1,5 @@
 #include "daemon/jobs/job_record.hpp"
 
-#include <chrono>
-#include <ctime>
-
 namespace fibrecell::daemon::jobs {
 namespace {
 
@@ -53,15 +50,6 @@ JobRecord record_from_json(const nlohmann::json& j) {
     r.start_when_planned = field<bool>(j, "start_when_planned");
     r.last_confirmed_event = field<std::int64_t>(j, "last_confirmed_event");
     return r;
-}
-
-std::string utc_now() {
-    const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-    std::tm tm{};
-    gmtime_r(&t, &tm);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return text;
 }
 
 }  // namespace fibrecell::daemon::jobs

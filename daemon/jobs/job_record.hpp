@@ -44,7 +44,4 @@ nlohmann::json to_json(const JobRecord& r);
 // key (the caller adds the file).
 JobRecord record_from_json(const nlohmann::json& j);
 
-// Now, UTC, ISO 8601 to the second ("2026-12-01T16:30:00Z").
-std::string utc_now();
-
 }  // namespace fibrecell::daemon::jobs

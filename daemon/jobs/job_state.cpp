@@ -23,6 +23,7 @@ constexpr Transition transitions[] = {
     {S::planned, A::start, S::starting},
     {S::planned, A::abort, S::aborted},
     {S::planned, A::remove, S::planned},
+    {S::planned, A::replan, S::planning},
 
     {S::starting, A::print_started, S::printing},
     {S::starting, A::start_refused, S::planned},      // a fresh start: nothing moved
@@ -55,6 +56,7 @@ constexpr Transition transitions[] = {
     {S::completed, A::remove, S::completed},
     {S::aborted, A::remove, S::aborted},
     {S::failed, A::remove, S::failed},
+    {S::failed, A::replan, S::planning},
 };
 
 // What to tell the user for a forbidden action: what the job needs first.
@@ -63,29 +65,36 @@ std::string hint(S state, A action) {
         case S::planning:
             if (action == A::start) return "it can start once it is planned";
             if (action == A::remove) return "abort it first";
+            if (action == A::replan) return "it is planning already";
             return "nothing is printing";
         case S::planned:
             if (action == A::resume) return "it has not started: start it";
             return "it is not printing";
         case S::starting:
             if (action == A::start) return "it is starting already";
+            if (action == A::replan) return "its print has started: abort it first";
             if (action == A::remove) return "abort it first";
             return "wait until it prints, or abort it";
         case S::printing:
             if (action == A::start) return "it is printing already";
             if (action == A::resume) return "it is not paused";
+            if (action == A::replan) return "its print has started: abort it first";
             return "pause or abort it first";  // remove
         case S::pausing:
             if (action == A::pause) return "it is pausing already";
+            if (action == A::replan) return "its print has started: abort it first";
             if (action == A::remove) return "abort it first";
             return "wait until it is paused, then resume it";
         case S::paused:
             if (action == A::start) return "resume it instead";
             if (action == A::pause) return "it is paused already";
+            if (action == A::replan) return "its print has started: abort it first";
             return "abort it first";  // remove
         case S::interrupted:
             if (action == A::start) return "resume or abort it";
             if (action == A::pause) return "it is not printing: resume or abort it";
+            if (action == A::replan)
+                return "its print has started: resume it with the plan it started with, or abort it";
             return "resume or abort it first";  // remove
         case S::completed:
         case S::aborted:
@@ -136,6 +145,8 @@ std::string_view to_string(JobAction a) {
             return "abort";
         case A::remove:
             return "remove";
+        case A::replan:
+            return "replan";
         case A::plan_done:
             return "plan_done";
         case A::plan_failed:

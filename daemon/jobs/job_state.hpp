@@ -3,7 +3,8 @@
 //
 //   planning     queued for a planning worker or being planned (progress stage "queued" while it
 //                waits). -> planned (plan_done), failed (plan_failed), aborted (abort).
-//   planned      the plan directory is complete. -> starting (start), aborted (abort).
+//   planned      the plan directory is complete. -> starting (start), planning (replan: a new
+//                plan, e.g. for a cell that changed), aborted (abort).
 //   starting     pre-flight: devices, heat, RAPID upload. -> printing (print_started), planned or
 //                interrupted (start_refused: nothing moved), aborted (abort), failed.
 //   printing     the robot runs, the sync engine feeds. -> pausing (pause), paused (faulted: the
@@ -12,7 +13,7 @@
 //   paused       -> printing (resume), aborted (abort), failed.
 //   interrupted  the service restarted while the job was starting, printing, pausing or paused;
 //                the journal keeps its last confirmed event. -> starting (resume), aborted (abort).
-//   completed, aborted, failed: ended; only remove.
+//   completed, aborted, failed: ended; only remove (and replan for failed: plan it again).
 // Every starting/printing/pausing/paused job becomes interrupted on a restart (service_restarted).
 // A user action that does not fit the state is refused with a message that says what to do.
 
@@ -44,6 +45,7 @@ enum class JobAction {
     resume,
     abort,
     remove,
+    replan,
     // service events
     plan_done,
     plan_failed,
@@ -60,8 +62,9 @@ inline constexpr JobState all_job_states[] = {
     JobState::planning, JobState::planned,    JobState::starting,  JobState::printing,
     JobState::pausing,  JobState::paused,     JobState::completed, JobState::aborted,
     JobState::failed,   JobState::interrupted};
-inline constexpr JobAction user_actions[] = {JobAction::start, JobAction::pause, JobAction::resume,
-                                             JobAction::abort, JobAction::remove};
+inline constexpr JobAction user_actions[] = {JobAction::start,  JobAction::pause,
+                                             JobAction::resume, JobAction::abort,
+                                             JobAction::remove, JobAction::replan};
 
 std::string_view to_string(JobState s);
 std::string_view to_string(JobAction a);

@@ -1,6 +1,7 @@
 #include "daemon/jobs/job_store.hpp"
 
-#include "daemon/jobs/durable_file.hpp"
+#include "config/durable_file.hpp"
+#include "config/utc_time.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -87,7 +88,7 @@ const JobStore::Entry& JobStore::entry(std::int64_t id) const {
 }
 
 void JobStore::persist(const JobRecord& r) const {
-    write_file_durably(job_dir(r.id) / "state.json", to_json(r).dump(2) + "\n");
+    config::write_file_durably(job_dir(r.id) / "state.json", to_json(r).dump(2) + "\n");
 }
 
 JobRecord JobStore::change(Entry& e, JobState to, const std::string& reason) {
@@ -95,7 +96,7 @@ JobRecord JobStore::change(Entry& e, JobState to, const std::string& reason) {
     const JobState from = r.state;
     r.state = to;
     if (!reason.empty()) r.reason = reason;
-    r.updated_at = utc_now();
+    r.updated_at = config::utc_now();
     if (e.journal) r.last_confirmed_event = e.journal->last_confirmed();
     persist(r);
     spdlog::info("job.state job {} {} -> {}{}{}", r.id, to_string(from), to_string(to),
@@ -139,7 +140,7 @@ LoadReport JobStore::load_all() {
             next = std::max(next, *id + 1);
             const fs::path dir = item.path();
             for (const auto& f : fs::directory_iterator(dir))
-                if (is_leftover_temp_file(f.path())) fs::remove(f.path());
+                if (config::is_leftover_temp_file(f.path())) fs::remove(f.path());
 
             Entry e;
             e.record.id = *id;
@@ -166,7 +167,7 @@ LoadReport JobStore::load_all() {
                 e.record.reason = dynamic_cast<const JournalError*>(&ex)
                                       ? std::string(ex.what())
                                       : (dir / "state.json").string() + ": " + ex.what();
-                e.record.updated_at = utc_now();
+                e.record.updated_at = config::utc_now();
                 spdlog::error("job.load_failed job {}: {}", *id, e.record.reason);
                 report.failed.push_back(*id);
                 report.loaded.push_back(*id);
@@ -211,7 +212,9 @@ JobRecord JobStore::submit(const JobInput& input) {
     std::string name;
     try {
         write_job_input(incoming / "input", input);
-        name = check_job_input(incoming / "input", input);
+        const planner::JobSpec job = check_job_input(incoming / "input", input);
+        if (options_.check_job) options_.check_job(job);
+        name = job.name;
     } catch (...) {
         std::error_code ec;
         fs::remove_all(incoming, ec);
@@ -233,16 +236,16 @@ JobRecord JobStore::submit(const JobInput& input) {
                               "): start, abort or remove one first");
         }
         r.id = next_id_;
-        write_file_durably(options_.state_dir / "next_id", std::to_string(r.id + 1) + "\n");
+        config::write_file_durably(options_.state_dir / "next_id", std::to_string(r.id + 1) + "\n");
         ++next_id_;
         r.name = name;
         r.state = JobState::planning;
-        r.submitted_at = r.updated_at = utc_now();
+        r.submitted_at = r.updated_at = config::utc_now();
         r.start_when_planned = input.start_when_planned;
-        write_file_durably(incoming / "state.json", to_json(r).dump(2) + "\n");
+        config::write_file_durably(incoming / "state.json", to_json(r).dump(2) + "\n");
         fs::create_directories(incoming / "plan");
         fs::rename(incoming, job_dir(r.id));
-        sync_directory(jobs_root());
+        config::sync_directory(jobs_root());
         r.progress = {"queued", 0};
         jobs_.insert_or_assign(r.id, Entry{r, nullptr});
         spdlog::info("job.submitted job {} '{}'", r.id, r.name);
@@ -297,6 +300,19 @@ JobRecord JobStore::request(std::int64_t id, JobAction action) {
             spdlog::info("job.removed job {}", id);
             return result;
         }
+        if (action == JobAction::replan) {
+            // A failed print keeps its history (journal, result): only a failed plan plans again.
+            if (e.record.state == JobState::failed &&
+                (e.journal || e.record.last_confirmed_event > 0 ||
+                 fs::exists(job_dir(id) / "journal.jsonl")))
+                throw JobConflict("job " + std::to_string(id) +
+                                  " is failed: its print had started; submit it again to print "
+                                  "another");
+            e.record.reason.clear();
+            e.record.plan_attempts = 0;
+            e.record.start_when_planned = false;
+            e.record.progress = {"queued", 0};
+        }
         const JobState to = allowed_targets(e.record.state, action).front();
         result = change(e, to, action == JobAction::abort ? "aborted by the operator" : "");
         if (is_ended(to)) prune_ended();
@@ -337,7 +353,7 @@ std::optional<PlanTicket> JobStore::begin_planning(std::int64_t id) {
     if (it == jobs_.end() || it->second.record.state != JobState::planning) return std::nullopt;
     JobRecord& r = it->second.record;
     ++r.plan_attempts;
-    r.updated_at = utc_now();
+    r.updated_at = config::utc_now();
     r.progress = {"read", 0};
     persist(r);  // before the work: a crash during it counts against plan_retries
     const fs::path plan = plan_dir(id);
@@ -373,7 +389,7 @@ void JobStore::remove_folder(std::int64_t id) {
     // Renamed away first: a crash during the removal leaves no half job behind.
     const fs::path gone = jobs_root() / (removed_prefix + std::to_string(id));
     fs::rename(job_dir(id), gone);
-    sync_directory(jobs_root());
+    config::sync_directory(jobs_root());
     std::error_code ec;
     fs::remove_all(gone, ec);
     jobs_.erase(id);

@@ -33,6 +33,8 @@ struct JobStoreOptions {
     int max_queued = 16;              // jobs planning or planned (not started); submit refuses more
     int keep_completed = 50;          // ended jobs kept; the oldest beyond are removed
     int plan_retries = 3;             // restarts during a job's planning before it is failed
+    // What the cell says of a job at submit (the print's settings): throws to refuse it.
+    std::function<void(const planner::JobSpec&)> check_job;
 };
 
 class JobNotFound : public std::runtime_error {
@@ -66,16 +68,18 @@ class JobStore {
     LoadReport load_all();
 
     // Stores a new job in state planning (progress stage "queued") and returns it. Throws
-    // JobInputError / config::ConfigError for a bad job (nothing is stored, no id used) and
-    // JobConflict when max_queued jobs wait already.
+    // JobInputError / config::ConfigError for a bad job, what check_job throws for one the cell
+    // cannot print (nothing is stored, no id used), and JobConflict when max_queued jobs wait
+    // already.
     JobRecord submit(const JobInput& input);
 
     JobRecord get(std::int64_t id) const;  // throws JobNotFound ("no job 12")
     std::vector<JobRecord> list() const;   // in id order
 
-    // A user action (start, pause, resume, abort, remove). Throws JobConflict with refusal()'s
-    // message, or when another job holds the cell (start, resume); JobNotFound. remove deletes the
-    // folder and returns the record as it was.
+    // A user action (start, pause, resume, abort, remove, replan). Throws JobConflict with
+    // refusal()'s message, or when another job holds the cell (start, resume), or for a replan of
+    // a job whose print had started; JobNotFound. remove deletes the folder and returns the
+    // record as it was; replan starts the job's planning afresh (no attempts, no reason).
     JobRecord request(std::int64_t id, JobAction action);
 
     // A service event (plan_done, faulted, ...). `reason` is kept for failed, aborted, paused and

@@ -3,7 +3,7 @@
 //
 //   jobs:
 //     planning_workers: 1              # jobs planned at the same time
-//     planner_threads: 0               # layer threads per plan (0: all cores)
+//     planner_threads: 0               # the planning pool, shared by the workers (0: a core each)
 //     planner_nice: 10                 # planning's CPU priority below the print's (0..19)
 //     max_queued: 16                   # jobs waiting for or in planning; more are refused
 //     keep_completed: 50               # ended jobs kept; the oldest beyond are removed

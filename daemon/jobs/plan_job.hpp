@@ -1,13 +1,17 @@
 #pragma once
-// The one way a job is planned: read the job YAML, run the planner's stages and write the plan
-// directory of contracts.md (field.vtk, toolpaths.json, preview/, rapid/, report.json). The
+// The one way a job is planned: read the job YAML, make the print's settings for the cell (or
+// refuse the job), read the model, run the planner's stages and write the plan directory
+// (docs/contracts.md): field.vtk, toolpaths.json, preview/, report.json and the print itself —
+// rapid/, program.json, print.json — with manifest.json last (daemon/print/plan_writer.hpp). The
 // offline `fibrecell plan` and the service's planning workers both call plan_job.
 //
-//   PlanRequest r{.job_file = "loop.job.yaml", .out_dir = "plan"};
+//   PlanRequest r{.job_file = "loop.job.yaml", .out_dir = "plan", .cell = cell};
 //   PlanJobResult p = plan_job(r, {progress_sink, &cancel_token});
 
-#include "daemon/robot_plan.hpp"
-#include "drivers/abb/cell/robot_config.hpp"
+#include "daemon/cell/cell_config.hpp"
+#include "daemon/print/print_settings.hpp"
+#include "daemon/print/robot_plan.hpp"
+#include "planner/executor.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
@@ -27,26 +31,29 @@ enum class PlanStage { field, layers };
 struct PlanRequest {
     std::filesystem::path job_file;             // the job YAML; relative paths resolve beside it
     std::filesystem::path out_dir;              // the plan directory (created)
-    PlanStage last_stage = PlanStage::layers;   // layers: toolpaths, preview, RAPID too
+    PlanStage last_stage = PlanStage::layers;   // layers: toolpaths, preview, the print too
     std::optional<planner::Strategy> strategy;  // overrides the job's planner.strategy
-    int threads = 0;                            // layer workers (0 = hardware concurrency)
-    drivers::abb::RobotCellConfig robot;        // the cell the RAPID program is for
+    CellConfig cell;                            // the cell that will print it
+    planner::Executor* executor = nullptr;      // runs the layers; null: on the calling thread
 };
 
 struct PlanJobResult {
     planner::JobSpec job;  // as planned (strategy override applied)
+    print::PrintSettings settings;
     planner::FieldStageResult field;
     std::optional<planner::LayerStageResult> layers;  // when last_stage == layers
-    std::optional<RobotPlan> robot;                   // when last_stage == layers
+    std::optional<print::RobotPlan> robot;            // when last_stage == layers
     nlohmann::json report;                            // as written to report.json
 };
 
-// Progress goes to `control.progress` per stage (the planner's stage names, then "write" and
-// "robot"); `control.cancel` is checked between stages and inside the long ones. `on_loaded`
-// runs once the job file is read and the plan directory created (the CLI names the job there).
-// Throws config::ConfigError (job file), planner::InputError / FeaError (model),
-// PrintProgramError / RapidWriteError (robot), planner::Cancelled, std::runtime_error (files);
-// the plan directory may then hold partial output: callers must not present it.
+// Progress goes to `control.progress` per stage ("read", the planner's stage names, then "write"
+// and "robot"), from the calling thread or, for "layers", from the executor's threads one call at
+// a time; `control.cancel` is checked between stages and inside the long ones. `on_loaded` runs
+// once the job file is read and its settings made (the CLI names the job there). Throws
+// config::ConfigError (job file), print::SettingsError (a setting the cell cannot print),
+// planner::InputError / FeaError (model), PrintProgramError / RapidWriteError (robot),
+// planner::Cancelled, std::system_error (files). A plan directory without manifest.json is
+// incomplete: callers must not present it.
 PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& control = {},
                        const std::function<void(const planner::JobSpec&)>& on_loaded = {});
 

@@ -1,33 +1,13 @@
 #include "daemon/jobs/plan_runner.hpp"
 
 #include "daemon/jobs/plan_job.hpp"
+#include "daemon/jobs/thread_pool.hpp"
 
 #include <spdlog/spdlog.h>
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 
 namespace fibrecell::daemon::jobs {
-
-namespace {
-
-// Linux keeps a nice value per thread and copies it to the threads this one starts. Never
-// raises the priority of a service that was started nicer still.
-void lower_this_threads_priority(int nice) {
-    const auto self = static_cast<id_t>(::gettid());
-    errno = 0;
-    const int now = ::getpriority(PRIO_PROCESS, self);
-    if (errno != 0 || nice <= now) return;
-    if (::setpriority(PRIO_PROCESS, self, nice) != 0)
-        spdlog::warn("planner: cannot lower the planning thread's priority to nice {}: {}", nice,
-                     std::strerror(errno));
-}
-
-}  // namespace
 
 PlanRunner::PlanRunner(JobStore& store, PlanRunnerOptions options)
     : store_(store), options_(std::move(options)) {
@@ -87,7 +67,7 @@ void PlanRunner::stop() {
 }
 
 void PlanRunner::work() {
-    lower_this_threads_priority(options_.planner_nice);
+    lower_thread_priority(options_.planner_nice);
     for (;;) {
         std::int64_t id = 0;
         {
@@ -139,8 +119,8 @@ void PlanRunner::plan_one(std::int64_t id) {
         if (progress_observer) progress_observer(id, p);
     };
     PlanRequest request{.job_file = ticket->job_file, .out_dir = ticket->plan_dir};
-    request.threads = options_.planner_threads;
-    request.robot = options_.robot;
+    request.cell = options_.cell;
+    request.executor = options_.executor;
     std::optional<JobRecord> result;
     try {
         plan_job(request, {sink, token.get()});

@@ -10,8 +10,9 @@
 //   for (auto id : store.load_all().to_plan) runner.enqueue(id);
 //   runner.enqueue(store.submit(input).id);
 
+#include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/job_store.hpp"
-#include "drivers/abb/cell/robot_config.hpp"
+#include "planner/executor.hpp"
 #include "planner/progress.hpp"
 
 #include <condition_variable>
@@ -27,12 +28,13 @@
 namespace fibrecell::daemon::jobs {
 
 struct PlanRunnerOptions {
-    int workers = 1;                      // jobs planned at the same time (JobsConfig)
-    int planner_threads = 0;              // layer threads per plan (0: all cores)
-    // Nice value of the planning threads (their layer threads inherit it): planning takes every
-    // core it gets, and a print's sync threads must still run within milliseconds.
+    int workers = 1;  // jobs planned at the same time (JobsConfig)
+    // Nice value of the workers (the pool's threads take theirs from ThreadPoolOptions):
+    // planning takes every core it gets, and a print's sync threads must still run within
+    // milliseconds.
     int planner_nice = 10;
-    drivers::abb::RobotCellConfig robot;  // the cell the RAPID program is for
+    CellConfig cell;                        // the cell the plans are for
+    planner::Executor* executor = nullptr;  // the layers of every plan; null: on the worker
 };
 
 class PlanRunner {

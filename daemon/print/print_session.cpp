@@ -115,23 +115,26 @@ void PrintSession::start() {
     }
     if (options_.heat_before_start) {
         // Both targets first, then the waits: the hotends heat together.
-        await_board(links_.board.submit(links_.extruder.prepare(false)), options_.heat_timeout,
-                    "pre-flight: heat-up");
-        await_board(links_.board.submit(links_.extruder.prepare(true)), options_.heat_timeout,
-                    "pre-flight: heat-up");
+        const drivers::HotendTargets& targets = options_.sync.hotends;
+        await_board(links_.board.submit(links_.extruder.prepare(targets, false)),
+                    options_.heat_timeout, "pre-flight: heat-up");
+        await_board(links_.board.submit(links_.extruder.prepare(targets, true)),
+                    options_.heat_timeout, "pre-flight: heat-up");
         // M109 returned: both are at temperature, whether or not a report came meanwhile.
-        options_.sync.pla_hotend_c = links_.extruder.config().pla_temp_c;
-        options_.sync.ccf_hotend_c = links_.extruder.config().ccf_temp_c;
+        options_.sync.pla_hotend_c = targets.pla_c;
+        options_.sync.ccf_hotend_c = targets.ccf_c;
     }
     if (options_.resume_tool)
         await_board(links_.board.submit(links_.extruder.select(*options_.resume_tool)),
                     options_.heat_timeout, "re-entry: tool select");
     start_engine(options_.sync.first_event);
-    const int first_chunk = 1;  // resuming inside a job re-enters through the program (issue 7)
+    const int chunk_count = options_.chunk_count > 0
+                                ? options_.chunk_count
+                                : options_.first_chunk - 1 + static_cast<int>(chunks_.size());
     try {
         fc_.request_run({.job_dir = options_.job_dir,
-                         .chunk_count = static_cast<int>(chunks_.size()),
-                         .first_chunk = first_chunk,
+                         .chunk_count = chunk_count,
+                         .first_chunk = options_.first_chunk,
                          .heartbeat_timeout_s = options_.heartbeat_timeout_s},
                         options_.run_request_timeout);
     } catch (const std::exception& e) {

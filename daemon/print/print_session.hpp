@@ -58,6 +58,10 @@ struct PrintOptions {
     std::vector<std::string> signals = drivers::abb::RobotSignals{}.all();
     std::size_t max_chunk_lines = 5000;
     sync::SyncOptions sync;                 // first_event > 1 resumes a print
+    // The chunks given are FcChunk<first_chunk> .. FcChunk<chunk_count> of the job (a re-entry
+    // runs the job from the interrupted chunk on); chunk_count 0: as many as given.
+    int first_chunk = 1;
+    int chunk_count = 0;
     // Resuming at a re-entry point: the tool the re-entered unit prints with, selected after the
     // heat-up (the board may have been reset since; its own head switch is behind the re-entry).
     std::optional<drivers::Head> resume_tool;

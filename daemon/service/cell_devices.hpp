@@ -7,7 +7,7 @@
 //
 // The links' observers are set once, here; the running print receives them through set_print().
 
-#include "daemon/cell_config.hpp"
+#include "daemon/cell/cell_config.hpp"
 #include "daemon/print/print_session.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
 #include "drivers/abb/rws/rws_client.hpp"

@@ -1,9 +1,10 @@
 #include "daemon/service/print_runner.hpp"
 
+#include "config/durable_file.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <atomic>
-#include <fstream>
 
 namespace fibrecell::daemon::service {
 
@@ -32,7 +33,7 @@ double seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 
 struct PrintRunner::Active {
     std::int64_t id = 0;
-    PrintPlan plan;  // before the session, which keeps a reference to its program
+    print::PrintPlan plan;  // before the session, which keeps a reference to its program
     std::shared_ptr<jobs::JobJournal> journal;
     std::unique_ptr<print::PrintSession> session;
     Clock::time_point started = Clock::now();
@@ -119,7 +120,7 @@ json PrintRunner::progress_json() const {
     const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
     const double elapsed = seconds(Clock::now() - a.started);
     json p = {{"layer", std::max(0, a.layer.load()) + 1},
-              {"layers", a.plan.layers},
+              {"layers", a.plan.layers()},
               {"event", done},
               {"events", total},
               {"fraction", fraction},
@@ -197,7 +198,8 @@ void PrintRunner::handle(Command& c) {
                 if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
                 try {
                     if (active_->heaters_off) {
-                        auto heat = devices_.board().submit(devices_.extruder().prepare(true));
+                        auto heat = devices_.board().submit(devices_.extruder().prepare(
+                            active_->plan.print.settings.hotends(), true));
                         if (heat.wait_for(std::chrono::minutes(10)) != std::future_status::ready ||
                             !heat.get().ok())
                             throw print::PrintError("resume: re-heating failed");
@@ -240,11 +242,25 @@ void PrintRunner::start_job(std::int64_t id) {
     a->id = id;
     const bool resuming = record.last_confirmed_event > 0;
     try {
-        a->plan = load_print_plan(store_.input_dir(id) / jobs::job_yaml_name, store_.plan_dir(id),
-                                  cell_.robot,
-                                  resuming ? std::optional(record.last_confirmed_event) : std::nullopt);
+        a->plan = print::load_print_plan(
+            store_.plan_dir(id), cell_,
+            resuming ? std::optional(record.last_confirmed_event) : std::nullopt);
+    } catch (const print::PlanRefused& e) {
+        refuse(e.what());
     } catch (const std::exception& e) {
         refuse(std::string("cannot load the plan: ") + e.what());
+    }
+    if (a->plan.resume && a->plan.resume->nothing_left) {
+        // Every path was done before the interruption: nothing moves, the job is complete.
+        spdlog::info("print.nothing_left job {}: every path was done before the interruption", id);
+        {
+            std::lock_guard lock(mu_);
+            active_ = std::move(a);
+        }
+        store_.apply(id, JobAction::print_started);
+        finish("");
+        store_.apply(id, JobAction::print_done);
+        return;
     }
     try {
         devices_.connect(options_.connect_timeout);
@@ -260,8 +276,9 @@ void PrintRunner::start_job(std::int64_t id) {
     // Real seconds (the simulated controller converts to its own time, docs/simcell.md).
     po.heartbeat_timeout_s = std::chrono::duration<double>(options_.heartbeat_timeout).count();
     po.signals = cell_.robot.signals.all();
-    po.sync.pla_line_width_mm = a->plan.job.process.pla.line_width_mm;
-    po.sync.pla_layer_height_mm = a->plan.job.layers.pla_layer_height_mm;
+    a->plan.print.settings.apply_to(po.sync);
+    po.first_chunk = a->plan.first_chunk;
+    po.chunk_count = a->plan.chunk_count;
     po.sync.time_scale = devices_.time_scale();
     po.sync.first_event = a->plan.first_event;
     po.sync.skip_events = a->plan.skip_events;
@@ -342,7 +359,7 @@ void PrintRunner::finish(const std::string& outcome_reason) {
     }
     if (!a) return;
     devices_.set_print(nullptr);
-    const print::PrintStatus st = a->session->poll();
+    const print::PrintStatus st = a->session ? a->session->poll() : print::PrintStatus{};
     const double elapsed = seconds(Clock::now() - a->started);
     json result = {{"elapsed_s", elapsed},
                    {"robot_time_s", elapsed * devices_.time_scale()},
@@ -358,7 +375,11 @@ void PrintRunner::finish(const std::string& outcome_reason) {
     for (const auto& t : st.sync.stats.timing)
         latency[std::string(abb::to_string(t.kind))] = summary_json(t.submit_ms);
     result["latency_ms"] = latency;
-    std::ofstream(store_.job_dir(a->id) / "result.json") << result.dump(2) << "\n";
+    try {
+        config::write_file_durably(store_.job_dir(a->id) / "result.json", result.dump(2) + "\n");
+    } catch (const std::exception& e) {
+        spdlog::error("print.result_lost job {}: {}", a->id, e.what());
+    }
     spdlog::info("print.finished job {} {}", a->id, result.dump());
     a->session.reset();
 }

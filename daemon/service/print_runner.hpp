@@ -3,10 +3,12 @@
 // start of a job, then the print's progress, pause, resume, abort and end, each reflected in the
 // job store through its transition table and in the job's journal.
 //
-//   start(id):  job starting -> the plan is loaded (or re-entered after an interruption), the
-//               devices connected, PrintSession::start (chunks checked and uploaded, heat-up,
-//               FcMain's run) -> printing; a refused start -> back to planned (or interrupted)
-//               with the reason, nothing moved.
+//   start(id):  job starting -> the plan is loaded from the plan directory and verified
+//               (daemon/print/print_plan.hpp: a damaged plan or one for a cell that changed is
+//               refused), re-entered after an interruption, the devices connected,
+//               PrintSession::start (chunks checked and uploaded, heat-up, FcMain's run) ->
+//               printing; a refused start -> back to planned (or interrupted) with the reason,
+//               nothing moved.
 //   while printing: the engine's confirmed events are journaled (fsync) as they come, progress is
 //               reported, a device fault makes the job paused with the reason (the cell is safe:
 //               robot held, feed stopped, heaters on) until the operator resumes or aborts.
@@ -15,11 +17,11 @@
 // Commands come from the API's threads and return at once; their outcome is reported through the
 // callback (the job's transition, or the reason it could not be done).
 
-#include "daemon/cell_config.hpp"
+#include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/job_store.hpp"
+#include "daemon/print/print_plan.hpp"
 #include "daemon/print/print_session.hpp"
 #include "daemon/service/cell_devices.hpp"
-#include "daemon/service/print_plan.hpp"
 
 #include <nlohmann/json.hpp>
 

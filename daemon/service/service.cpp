@@ -4,6 +4,7 @@
 #include "config/logging.hpp"
 #include "daemon/api/api_error.hpp"
 #include "daemon/api/params.hpp"
+#include "daemon/print/print_settings.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -92,11 +93,15 @@ Service::Service(boost::asio::io_context& io, ServiceConfig config)
 Service::~Service() { stop(); }
 
 void Service::start() {
-    store_ = std::make_unique<jobs::JobStore>(
-        jobs::JobStoreOptions{.state_dir = config_.cell.state_dir,
-                              .max_queued = config_.jobs.max_queued,
-                              .keep_completed = config_.jobs.keep_completed,
-                              .plan_retries = config_.jobs.plan_retries});
+    store_ = std::make_unique<jobs::JobStore>(jobs::JobStoreOptions{
+        .state_dir = config_.cell.state_dir,
+        .max_queued = config_.jobs.max_queued,
+        .keep_completed = config_.jobs.keep_completed,
+        .plan_retries = config_.jobs.plan_retries,
+        // A setting this cell cannot print refuses the submit at once.
+        .check_job = [cell = config_.cell](const planner::JobSpec& job) {
+            print::print_settings(job, cell);
+        }});
     const jobs::LoadReport loaded = store_->load_all();
     for (const auto& w : loaded.warnings) spdlog::warn("jobs.load {}", w);
     spdlog::info("jobs.loaded {} jobs ({} to plan, {} interrupted, {} failed)", loaded.loaded.size(),
@@ -116,11 +121,13 @@ void Service::start() {
                        .delivery = api::Delivery::latest});
     });
 
+    planning_pool_ = std::make_unique<jobs::ThreadPool>(jobs::ThreadPoolOptions{
+        .threads = config_.jobs.planner_threads, .nice = config_.jobs.planner_nice});
     planner_ = std::make_unique<jobs::PlanRunner>(
         *store_, jobs::PlanRunnerOptions{.workers = config_.jobs.planning_workers,
-                                         .planner_threads = config_.jobs.planner_threads,
                                          .planner_nice = config_.jobs.planner_nice,
-                                         .robot = config_.cell.robot});
+                                         .cell = config_.cell,
+                                         .executor = planning_pool_.get()});
     planner_->on_progress([this](std::int64_t id, const jobs::JobProgress& p) {
         api_->publish({.topic = std::to_string(id),
                        .method = api::notify::job_progress,
@@ -307,6 +314,8 @@ void Service::register_methods() {
             throw ApiError::invalid_params(e.what());
         } catch (const config::ConfigError& e) {
             throw ApiError::invalid_params(e.what());
+        } catch (const print::SettingsError& e) {
+            throw ApiError::invalid_params(e.what());
         }
         planner_->enqueue(r.id);
         spdlog::info("job.submitted {} ({}) by {}", r.id, r.name, ctx.peer);
@@ -358,6 +367,15 @@ void Service::register_methods() {
                                                 : store_->request(id, JobAction::abort);
         });
         if (jobs::holds_cell(before)) printer_->abort(id, nullptr);
+        return job_json(r);
+    });
+
+    // A new plan for a planned job (the cell changed since, docs/jobs.md) or a failed plan.
+    api_->add_method("job.replan", [this](const json& params, const CallContext& ctx) {
+        const std::int64_t id = job_param(params, ctx, false);
+        const JobRecord r = as_api([&] { return store_->request(id, JobAction::replan); });
+        planner_->enqueue(id);
+        spdlog::info("job.replan {} by {}", id, ctx.peer);
         return job_json(r);
     });
 

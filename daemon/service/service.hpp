@@ -6,10 +6,11 @@
 
 #include "daemon/api/api_config.hpp"
 #include "daemon/api/api_server.hpp"
-#include "daemon/cell_config.hpp"
+#include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/job_store.hpp"
 #include "daemon/jobs/jobs_config.hpp"
 #include "daemon/jobs/plan_runner.hpp"
+#include "daemon/jobs/thread_pool.hpp"
 #include "daemon/service/cell_devices.hpp"
 #include "daemon/service/print_runner.hpp"
 
@@ -71,6 +72,7 @@ class Service {
     std::unique_ptr<api::ApiServer> api_;
     std::unique_ptr<jobs::JobStore> store_;
     std::unique_ptr<CellDevices> devices_;
+    std::unique_ptr<jobs::ThreadPool> planning_pool_;  // before planner_, which uses it
     std::unique_ptr<jobs::PlanRunner> planner_;
     std::unique_ptr<PrintRunner> printer_;
     boost::asio::steady_timer ticker_;

@@ -5,10 +5,9 @@
 
 namespace fibrecell::daemon::sync {
 
-std::string heat_and_wait(const drivers::ExtruderConfig& config, drivers::Head head) {
-    const bool pla = head == drivers::Head::pla;
-    const int tool = pla ? config.pla_tool : config.ccf_tool;
-    const double temp_c = pla ? config.pla_temp_c : config.ccf_temp_c;
+std::string heat_and_wait(const drivers::ExtruderConfig& config, drivers::Head head,
+                          double temp_c) {
+    const int tool = head == drivers::Head::pla ? config.pla_tool : config.ccf_tool;
     return "M109 T" + std::to_string(tool) + " S" + std::to_string(std::lround(temp_c));
 }
 

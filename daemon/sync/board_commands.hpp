@@ -8,8 +8,8 @@
 
 namespace fibrecell::daemon::sync {
 
-// "M109 T<tool> S<temp>": heat the head's hotend to its configured temperature and wait.
-std::string heat_and_wait(const drivers::ExtruderConfig& config, drivers::Head head);
+// "M109 T<tool> S<temp>": heat the head's hotend to the print's temperature and wait.
+std::string heat_and_wait(const drivers::ExtruderConfig& config, drivers::Head head, double temp_c);
 
 // "M400": the ok comes once every queued move has run (the thread feed is in the nozzle).
 std::string wait_for_moves();

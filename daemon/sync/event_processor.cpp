@@ -57,7 +57,7 @@ void EventProcessor::begin() {
                      ", not active");
     if (dev_.robot.state() == drivers::abb::RobotIoState::fault)
         return fault("robot I/O: " + dev_.robot.snapshot().fault_reason);
-    send(dev_.extruder.prepare(false));
+    send(dev_.extruder.prepare(options_.hotends, false));
     spdlog::info("sync.started first_event={} events={}", options_.first_event,
                  dev_.program.events.size());
     if (const auto& r = options_.resume_feed) {
@@ -135,7 +135,7 @@ std::vector<std::string> EventProcessor::commands_for(const ProgramEvent& e) {
         case EventKind::head_switch:
             lines = x.select(head_of(e));
             if (!hotend_ready(head_of(e))) {
-                lines.push_back(heat_and_wait(x.config(), head_of(e)));
+                lines.push_back(heat_and_wait(x.config(), head_of(e), options_.hotends.of(head_of(e))));
                 ++stats_.heat_waits;
             }
             break;
@@ -163,10 +163,8 @@ std::vector<std::string> EventProcessor::commands_for(const ProgramEvent& e) {
 }
 
 bool EventProcessor::hotend_ready(Head head) const {
-    const drivers::ExtruderConfig& c = dev_.extruder.config();
     const auto& reading = head == Head::pla ? pla_hotend_c_ : ccf_hotend_c_;
-    const double target = head == Head::pla ? c.pla_temp_c : c.ccf_temp_c;
-    return reading && std::abs(*reading - target) <= options_.temp_window_c;
+    return reading && std::abs(*reading - options_.hotends.of(head)) <= options_.temp_window_c;
 }
 
 // --- Board side ---------------------------------------------------------------------------------

@@ -17,6 +17,8 @@ void require_positive(double v, const char* field) {
 }  // namespace
 
 void validate(const SyncOptions& o, std::int64_t events_total) {
+    require_positive(o.hotends.pla_c, "hotends.pla_c");
+    require_positive(o.hotends.ccf_c, "hotends.ccf_c");
     require_positive(o.pla_line_width_mm, "pla_line_width_mm");
     require_positive(o.pla_layer_height_mm, "pla_layer_height_mm");
     require_positive(o.temp_window_c, "temp_window_c");

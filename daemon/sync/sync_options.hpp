@@ -1,6 +1,8 @@
 #pragma once
-// Settings of one print's sync engine: where the run starts, the job's PLA line (to meter
-// extrude_pla), the head-switch temperature check, and the metering pace.
+// Settings of one print's sync engine: where the run starts, the job's temperatures and PLA line
+// (to meter extrude_pla), the head-switch temperature check, and the metering pace.
+
+#include "drivers/extruder/extruder_controller.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -21,8 +23,9 @@ struct SyncOptions {
     // Resume: events at or after first_event whose work was done before an interruption (the PLA
     // paths of a re-entered layer): the robot passes them again, the board gets nothing.
     std::vector<std::int64_t> skip_events;
+    drivers::HotendTargets hotends;    // job process.*.nozzle_temp_c
     double pla_line_width_mm = 0.8;    // job process.pla.line_width_mm
-    double pla_layer_height_mm = 0.8;  // job planner.pla_layer_height_mm
+    double pla_layer_height_mm = 0.8;  // job layers.pla_layer_height_mm
     double temp_window_c = 5;          // head switch: M109 unless the hotend reads this close
     double fibre_piece_mm = 1;         // path covered by one metered fibre G1 E
     double pla_piece_mm = 2;           // path covered by one metered PLA G1 E

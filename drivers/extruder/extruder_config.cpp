@@ -1,6 +1,17 @@
 #include "drivers/extruder/extruder_config.hpp"
 
 namespace fibrecell::drivers {
+namespace {
+
+// Cell files from before the job's temperatures took effect.
+void moved_temperature(config::Section& head) {
+    if (head.has("temp_c"))
+        head.fail("temp_c",
+                  "the print temperature is the job's (process.pla/ccf.nozzle_temp_c); the cell "
+                  "limits it with max_temp_c");
+}
+
+}  // namespace
 
 ExtruderConfig load_extruder_config(config::Section s) {
     ExtruderConfig c;
@@ -32,7 +43,9 @@ ExtruderConfig load_extruder_config(config::Section s) {
     {
         config::Section p = s.section("pla");
         c.pla_tool = p.integer("tool", 0, 0, 1);
-        c.pla_temp_c = p.number("temp_c", 200, 0, 280);
+        moved_temperature(p);
+        c.pla_nozzle_diameter_mm = p.number("nozzle_diameter_mm", 0.8, 0.05, 5);
+        c.pla_max_temp_c = p.number("max_temp_c", 260, 0, 450);
         c.filament_diameter_mm = p.number("filament_diameter_mm", 1.75, 0.5, 3.5);
         c.retract_mm = p.number("retract_mm", 1.0, 0, 20);
         c.retract_speed_mm_s = p.number("retract_speed_mm_s", 40, 0, 150, true);
@@ -41,7 +54,9 @@ ExtruderConfig load_extruder_config(config::Section s) {
     {
         config::Section f = s.section("ccf");
         c.ccf_tool = f.integer("tool", 1, 0, 1);
-        c.ccf_temp_c = f.number("temp_c", 250, 0, 300);
+        moved_temperature(f);
+        c.ccf_nozzle_diameter_mm = f.number("nozzle_diameter_mm", 1.0, 0.05, 5);
+        c.ccf_max_temp_c = f.number("max_temp_c", 260, 0, 450);
         c.cutter_distance_mm = f.number("cutter_distance_mm", 42, 0, 500);
         c.thread_speed_mm_s = f.number("thread_speed_mm_s", 5, 0, 100, true);
         f.finish();
@@ -58,6 +73,7 @@ ExtruderConfig load_extruder_config(config::Section s) {
         c.cutter.hold_ms = k.integer("hold_ms", 200, 0, 10000);
         k.finish();
     }
+    c.min_extrude_temp_c = s.number("min_extrude_temp_c", 170, 0, 450);
     c.max_extrusion_length_mm = s.number("max_extrusion_length_mm", 200, 1, 10000, true);
     c.max_feed_mm_s = s.number("max_feed_mm_s", 50, 0, 500, true);
     s.finish();

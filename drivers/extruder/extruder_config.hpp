@@ -28,12 +28,18 @@ struct ExtruderConfig {
     marlin::MarlinLinkConfig link;
     int pla_tool = 0;                     // E0
     int ccf_tool = 1;                     // E1
-    double pla_temp_c = 200;
-    double ccf_temp_c = 250;
+    // The nozzles mounted (hardware: a job that states another is refused) and the hotend
+    // temperatures a job may ask for; the print's temperatures are the job's.
+    double pla_nozzle_diameter_mm = 0.8;
+    double ccf_nozzle_diameter_mm = 1.0;
+    double pla_max_temp_c = 260;          // Marlin: HEATER_n_MAXTEMP 275 less its 15 degC margin
+    double ccf_max_temp_c = 260;
+    double min_extrude_temp_c = 170;      // Marlin EXTRUDE_MINTEMP: colder, E moves are refused
     double filament_diameter_mm = 1.75;   // PLA
     double retract_mm = 1.0;
     double retract_speed_mm_s = 40;     // Marlin FWRETRACT default 45; the prime before a PLA path takes retract_mm / this
-    double cutter_distance_mm = 42;       // cutter to nozzle tip: the thread feed at a path start
+    double cutter_distance_mm = 42;       // cutter to nozzle tip (hardware): the thread feed at a
+                                          // path start and where the planner puts the cut
     double thread_speed_mm_s = 5;
     double max_extrusion_length_mm = 200; // Marlin EXTRUDE_MAXLENGTH: longer moves are split
     double max_feed_mm_s = 50;            // highest E feed rate accepted

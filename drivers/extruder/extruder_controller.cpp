@@ -26,7 +26,7 @@ void require_positive(double v, const char* what) {
 
 ExtruderController::ExtruderController(ExtruderConfig config) : config_(std::move(config)) {}
 
-std::vector<std::string> ExtruderController::prepare(bool wait) {
+std::vector<std::string> ExtruderController::prepare(const HotendTargets& targets, bool wait) {
     std::vector<std::string> out{"M83"};
     const auto tool_temp = [](int t, double c, bool w) {
         std::string l = w ? "M109 T" : "M104 T";
@@ -35,11 +35,11 @@ std::vector<std::string> ExtruderController::prepare(bool wait) {
         l += num(c, 0);
         return l;
     };
-    out.push_back(tool_temp(config_.pla_tool, config_.pla_temp_c, false));
-    out.push_back(tool_temp(config_.ccf_tool, config_.ccf_temp_c, false));
+    out.push_back(tool_temp(config_.pla_tool, targets.pla_c, false));
+    out.push_back(tool_temp(config_.ccf_tool, targets.ccf_c, false));
     if (wait) {
-        out.push_back(tool_temp(config_.pla_tool, config_.pla_temp_c, true));
-        out.push_back(tool_temp(config_.ccf_tool, config_.ccf_temp_c, true));
+        out.push_back(tool_temp(config_.pla_tool, targets.pla_c, true));
+        out.push_back(tool_temp(config_.ccf_tool, targets.ccf_c, true));
     }
     return out;
 }

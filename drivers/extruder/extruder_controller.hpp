@@ -13,12 +13,20 @@ namespace fibrecell::drivers {
 
 enum class Head { pla, ccf };
 
+// The print's hotend temperatures (the job's process.*.nozzle_temp_c) [degC].
+struct HotendTargets {
+    double pla_c = 200;
+    double ccf_c = 250;
+
+    double of(Head h) const { return h == Head::pla ? pla_c : ccf_c; }
+};
+
 class ExtruderController {
   public:
     explicit ExtruderController(ExtruderConfig config);
 
-    // Relative E, both hotends to temperature; with `wait`, M109 for each before returning.
-    std::vector<std::string> prepare(bool wait);
+    // Relative E, both hotends to `targets`; with `wait`, M109 for each before returning.
+    std::vector<std::string> prepare(const HotendTargets& targets, bool wait);
     // T<n> when the head changes.
     std::vector<std::string> select(Head head);
     // PLA along `path_mm` of line at the robot's TCP speed [mm/s]: E = path * w * h / filament

@@ -29,9 +29,28 @@ struct IncompatibilityOptions {
     IncompatibilityRule rule = IncompatibilityRule::all_neighbours;
 };
 
-// v_e: #T re-oriented unit vectors; neighbours: vertex-sharing adjacency. Returns #T flags,
-// 1 where v_e stays defined. Every element is judged on the same input field (no cascading),
-// and an element without neighbours is kept: there is nothing it disagrees with.
+// Per element, how many of its vertex-sharing neighbours e* it disagrees with (v_e.v_e* <= eta)
+// out of how many: every reading of Eq. 2 follows from these two counts.
+struct NeighbourAgreement {
+    std::vector<std::uint32_t> disagreeing;  // #T
+    std::vector<std::uint32_t> neighbours;   // #T
+};
+
+// v_e: #T re-oriented unit vectors; neighbours: vertex-sharing adjacency. One pass over the
+// adjacency.
+NeighbourAgreement neighbour_agreement(const std::vector<Eigen::Vector3d>& v_e,
+                                       const CsrGraph& neighbours, double eta);
+
+// #T flags, 1 where v_e stays defined under `rule`. Every element is judged on the same input
+// field (no cascading), and an element without neighbours is kept: there is nothing it disagrees
+// with.
+std::vector<std::uint8_t> compatible_directions(const NeighbourAgreement& agreement,
+                                                IncompatibilityRule rule);
+
+// The fraction of elements `rule` undefines.
+double removed_fraction(const NeighbourAgreement& agreement, IncompatibilityRule rule);
+
+// Both steps at once.
 std::vector<std::uint8_t> compatible_directions(const std::vector<Eigen::Vector3d>& v_e,
                                                 const CsrGraph& neighbours,
                                                 const IncompatibilityOptions& options = {});

@@ -3,7 +3,6 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 namespace fibrecell::planner {
@@ -43,8 +42,7 @@ class VtkOut {
 
 }  // namespace
 
-void write_field_vtk(const std::string& path, const TetMesh& mesh, const FieldArrays& arrays,
-                     VtkEncoding encoding) {
+std::string field_vtk_text(const TetMesh& mesh, const FieldArrays& arrays, VtkEncoding encoding) {
     const std::size_t nt = mesh.tets.size();
     VtkOut out(encoding);
     out.str().reserve(mesh.vertices.size() * 40 + nt * 200);
@@ -101,9 +99,7 @@ void write_field_vtk(const std::string& path, const TetMesh& mesh, const FieldAr
         }
         out.text("\n");
     }
-    std::ofstream file(path, std::ios::binary);
-    file.write(out.str().data(), static_cast<std::streamsize>(out.str().size()));
-    if (!file.flush()) throw std::runtime_error(path + ": cannot write the field file");
+    return std::move(out.str());
 }
 
 }  // namespace fibrecell::planner

@@ -20,10 +20,9 @@ struct FieldArrays {
 
 enum class VtkEncoding { binary, ascii };
 
-// Writes `mesh` with the given per-element arrays (null ones are left out); binary by default
-// (a third of the size, exact doubles). Throws std::runtime_error naming the path when the file
-// cannot be written.
-void write_field_vtk(const std::string& path, const TetMesh& mesh, const FieldArrays& arrays,
-                     VtkEncoding encoding = VtkEncoding::binary);
+// `mesh` with the given per-element arrays (null ones are left out) as a VTK file's bytes; binary
+// by default (a third of the size, exact doubles).
+std::string field_vtk_text(const TetMesh& mesh, const FieldArrays& arrays,
+                           VtkEncoding encoding = VtkEncoding::binary);
 
 }  // namespace fibrecell::planner

@@ -123,7 +123,7 @@ PlannerSpec read_planner(Section s) {
     p.sigma_cap_percentile = s.number("sigma_cap_percentile", p.sigma_cap_percentile, 0, 100, true);
     p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
     p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);
-    p.cutter_distance_mm = s.number("cutter_distance_mm", p.cutter_distance_mm, 0, 10000);
+    if (s.has("cutter_distance_mm")) p.cutter_distance_mm = s.number("cutter_distance_mm", 0, 0, 10000);
     s.finish();
     return p;
 }
@@ -133,7 +133,7 @@ HeadProcessSpec read_head(Section s, HeadProcessSpec h) {
     h.travel_speed_mm_s = s.number("travel_speed_mm_s", h.travel_speed_mm_s, 0, 1000, true);
     h.nozzle_temp_c = s.number("nozzle_temp_c", h.nozzle_temp_c, 0, 400);
     h.line_width_mm = s.number("line_width_mm", h.line_width_mm, 0.05, 20, false);
-    h.nozzle_diameter_mm = s.number("nozzle_diameter_mm", h.nozzle_diameter_mm, 0.05, 5);
+    if (s.has("nozzle_diameter_mm")) h.nozzle_diameter_mm = s.number("nozzle_diameter_mm", 0, 0.05, 5);
     s.finish();
     return h;
 }

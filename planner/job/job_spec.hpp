@@ -65,20 +65,23 @@ struct PlannerSpec {
     double sigma_cap_percentile = 99.0;
     double fibre_spacing_mm = 1.0;   // W: minimal spacing between fibre paths
     int smoothing_iterations = 50;   // local Laplacian smoothing per layer
-    double cutter_distance_mm = 42;  // cutter to nozzle tip: shorter paths cannot be laid
+    // Cutter to nozzle tip as the job states it, if it does. It is the cell's hardware: the print
+    // uses the cell's value and refuses a job that states another (daemon/print/print_settings).
+    std::optional<double> cutter_distance_mm;
 };
 
 struct HeadProcessSpec {
     double speed_mm_s;         // printing speed
-    double travel_speed_mm_s;  // moves without material
-    double nozzle_temp_c;
-    double line_width_mm;  // deposited line (PLA) or ribbon (CCF) width
-    double nozzle_diameter_mm;
+    double travel_speed_mm_s;  // lift, travel and head turns with this nozzle
+    double nozzle_temp_c;      // M104/M109 for the print
+    double line_width_mm;      // deposited line (PLA: the flow) or ribbon (CCF) width
+    // The nozzle the job was made for, if it says: the cell's mounted nozzle must be this one.
+    std::optional<double> nozzle_diameter_mm;
 };
 
 struct ProcessSpec {
-    HeadProcessSpec pla{12.0, 60.0, 200.0, 0.8, 0.8};
-    HeadProcessSpec ccf{5.0, 60.0, 250.0, 1.2, 1.0};
+    HeadProcessSpec pla{12.0, 100.0, 200.0, 0.8, std::nullopt};
+    HeadProcessSpec ccf{5.0, 100.0, 250.0, 1.2, std::nullopt};
 };
 
 struct JobSpec {

@@ -2,7 +2,6 @@
 
 #include "planner/fea/linear_elastic.hpp"
 #include "planner/field/incompatibility.hpp"
-#include "planner/io/read_model.hpp"
 #include "planner/mesh/adjacency.hpp"
 #include "planner/mesh/boundary.hpp"
 #include "planner/stopwatch.hpp"
@@ -50,17 +49,10 @@ FeaSummary summarise(const FeaResult& r, const LoadCase& lc) {
 
 }  // namespace
 
-FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control) {
+FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model, const StepControl& control) {
     FieldStageResult out;
     Stopwatch clock;
-
-    control.report("read", 0.0);
-    out.model = read_volume_model(job.model.mesh_path, job.model.stress_path);
-    out.timings.read = clock.lap();
-    spdlog::info("plan.read {} vertices, {} tets from {} in {:.3f} s",
-                 out.model.mesh.vertex_count(), out.model.mesh.tet_count(), job.model.mesh_path,
-                 out.timings.read);
-    control.check_cancel();
+    out.model = std::move(model);
 
     const FaceNeighbours faces = face_neighbours(out.model.mesh);
     if (job.model.load_case) {
@@ -89,23 +81,15 @@ FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control)
 
     control.report("incompatible_removal", 0.0);
     const CsrGraph around = vertex_sharing_neighbours(out.model.mesh);
-    IncompatibilityOptions removal{job.planner.eta, job.planner.incompatibility_rule};
-    out.v_defined = compatible_directions(out.field.v_e, around, removal);
+    const NeighbourAgreement agreement = neighbour_agreement(out.field.v_e, around, job.planner.eta);
+    out.v_defined = compatible_directions(agreement, job.planner.incompatibility_rule);
     out.removed =
         static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
-    out.timings.incompatible_removal = clock.lap();
-
-    // Every reading of Eq. 2, measured for the report (not timed as part of the stage).
+    // Every reading of Eq. 2 from the same counts, for the report.
     for (auto rule : {IncompatibilityRule::all_neighbours, IncompatibilityRule::majority,
-                      IncompatibilityRule::any_neighbour}) {
-        const auto d = rule == removal.rule
-                           ? out.v_defined
-                           : compatible_directions(out.field.v_e, around, {removal.eta, rule});
-        out.removed_fraction_by_rule[static_cast<int>(rule)] =
-            static_cast<double>(std::count(d.begin(), d.end(), 0)) /
-            static_cast<double>(std::max<std::size_t>(1, d.size()));
-    }
-    clock.lap();
+                      IncompatibilityRule::any_neighbour})
+        out.removed_fraction_by_rule[static_cast<int>(rule)] = removed_fraction(agreement, rule);
+    out.timings.incompatible_removal = clock.lap();
 
     out.timings.total = clock.elapsed();
     spdlog::info(

@@ -17,7 +17,7 @@ namespace fibrecell::planner {
 
 // Wall-clock seconds of each step, named as in report.json's timings_s.
 struct FieldStageTimings {
-    double read = 0;
+    double read = 0;  // set by whoever read the model
     double fea = 0;  // 0 when the stress came with the model
     double principal = 0;
     double mst_reorientation = 0;
@@ -46,8 +46,11 @@ struct FieldStageResult {
     FieldStageTimings timings;
 };
 
-// Runs the stage for `job`. Throws InputError (model files), FeaError (load case),
-// std::invalid_argument (regions that do not fit the mesh) and Cancelled.
-FieldStageResult run_field_stage(const JobSpec& job, const StepControl& control = {});
+// Runs the stage for `job` on its model (planner/io/read_model.hpp reads it; its stress may be
+// missing when the job has a load case). timings.read stays 0: the reading is the caller's.
+// Throws FeaError (load case), std::invalid_argument (no stress and no load case, regions that do
+// not fit the mesh) and Cancelled.
+FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model,
+                                 const StepControl& control = {});
 
 }  // namespace fibrecell::planner

@@ -13,9 +13,7 @@
 #include "planner/toolpaths/pla_paths.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <mutex>
-#include <thread>
 
 namespace fibrecell::planner {
 namespace {
@@ -50,8 +48,8 @@ SelectedFaces boundary_fibre_selection(const JobSpec& job, const VolumeModel& mo
 
 }  // namespace
 
-LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field, int threads,
-                                 const StepControl& control) {
+LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field,
+                                 const LayerStageOptions& options, const StepControl& control) {
     Stopwatch clock;
     LayerStageResult out;
     const Placement placement = placement_for(field.model.mesh, job.placement);
@@ -71,63 +69,51 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     out.outlines.resize(schedule.size());
 
     const PlaPathOptions pla = pla_path_options(job.process);
-    const ContourZigzagOptions baseline = contour_zigzag_options(job.planner);
+    const ContourZigzagOptions baseline =
+        contour_zigzag_options(job.planner, options.cutter_distance_mm);
     FibreLayerOptions fibre;
     fibre.field = {.smoothing_iterations = job.planner.smoothing_iterations,
                    .p = job.planner.p,
                    .sigma_cap_percentile = job.planner.sigma_cap_percentile};
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
-    fibre.cutter_distance_mm = job.planner.cutter_distance_mm;
+    fibre.cutter_distance_mm = options.cutter_distance_mm;
     const SelectedFaces boundary_fibre_faces = boundary_fibre_selection(job, field.model, placed);
 
     std::vector<LayerWork> work(schedule.size());
-    std::atomic<std::size_t> next{0}, finished{0};
-    std::mutex failure_mutex;
-    std::exception_ptr failure;
-    auto worker = [&] {
-        try {
-            for (std::size_t i = next++; i < schedule.size(); i = next++) {
-                control.check_cancel();
-                const ScheduledLayer& s = schedule[i];
-                LayerWork& w = work[i];
-                w.layer = {s.index, s.z, s.head, s.thickness, {}};
-                out.outlines[i] = layer_outline(out.sections[i]);
-                if (s.head == Head::pla) {
-                    w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number, pla);
-                } else if (job.planner.strategy == Strategy::contour_zigzag) {
-                    auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
-                    w.layer.paths = std::move(r.paths);
-                    w.dropped_short = r.dropped_short;
-                } else {
-                    FibreLayer r = plan_fibre_layer(
-                        out.sections[i], v_placed, field.field.sigma_e, field.v_defined,
-                        boundary_sources(out.sections[i], boundary_fibre_faces), fibre);
-                    w.layer.paths = std::move(r.paths);
-                    w.dropped_short = static_cast<int>(r.dropped_short);
-                    w.min_spacing = r.min_spacing_mm;
-                    w.joins = static_cast<int>(r.joins);
-                    w.sigma = std::move(r.field.sigma_f);
-                    w.warnings = std::move(r.warnings);
-                    w.timings = r.timings;
-                }
-                if (s.head == Head::ccf)
-                    w.quality =
-                        fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
-                                      field.v_defined, {.p = job.planner.p});
-                control.report("layers", static_cast<double>(++finished) / schedule.size());
-            }
-        } catch (...) {
-            std::lock_guard lock(failure_mutex);
-            if (!failure) failure = std::current_exception();
-            next = schedule.size();  // the others stop at their next layer
+    std::mutex progress_mutex;  // the sink is called by one task at a time
+    std::size_t finished = 0;
+    const auto plan_layer = [&](std::size_t i) {
+        control.check_cancel();
+        const ScheduledLayer& s = schedule[i];
+        LayerWork& w = work[i];
+        w.layer = {s.index, s.z, s.head, s.thickness, {}};
+        out.outlines[i] = layer_outline(out.sections[i]);
+        if (s.head == Head::pla) {
+            w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number, pla);
+        } else if (job.planner.strategy == Strategy::contour_zigzag) {
+            auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
+            w.layer.paths = std::move(r.paths);
+            w.dropped_short = r.dropped_short;
+        } else {
+            FibreLayer r = plan_fibre_layer(
+                out.sections[i], v_placed, field.field.sigma_e, field.v_defined,
+                boundary_sources(out.sections[i], boundary_fibre_faces), fibre);
+            w.layer.paths = std::move(r.paths);
+            w.dropped_short = static_cast<int>(r.dropped_short);
+            w.min_spacing = r.min_spacing_mm;
+            w.joins = static_cast<int>(r.joins);
+            w.sigma = std::move(r.field.sigma_f);
+            w.warnings = std::move(r.warnings);
+            w.timings = r.timings;
         }
+        if (s.head == Head::ccf)
+            w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed,
+                                      field.field.sigma_e, field.v_defined, {.p = job.planner.p});
+        std::lock_guard lock(progress_mutex);
+        control.report("layers", static_cast<double>(++finished) / schedule.size());
     };
-    const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> pool;
-    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    SerialExecutor serial;
+    (options.executor ? *options.executor : serial).for_each(schedule.size(), plan_layer);
 
     LayerStageStats& st = out.stats;
     double min_length = 0;

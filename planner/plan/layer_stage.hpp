@@ -2,6 +2,7 @@
 // The second planning stage: place the part, cut it into the layer schedule and plan every
 // layer's paths (PLA matrix rings + zigzag; CCF fibres by the job's strategy).
 
+#include "planner/executor.hpp"
 #include "planner/fibre/layer_field.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"
@@ -41,8 +42,18 @@ struct LayerStageResult {
     LayerStageStats stats;
 };
 
-// threads: worker threads for the independent layers (0 = hardware concurrency).
-LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field, int threads = 0,
+struct LayerStageOptions {
+    // Cutter to nozzle tip on the cell that prints the job: shorter fibre paths cannot be laid
+    // and are dropped (the print settings give the cell's value, daemon/print/print_settings).
+    double cutter_distance_mm = 42;
+    // Runs the independent layers; null: one after another on the calling thread.
+    Executor* executor = nullptr;
+};
+
+// `control.progress` gets ("layers", fraction) from the executor's threads, never two calls at
+// once.
+LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& field,
+                                 const LayerStageOptions& options = {},
                                  const StepControl& control = {});
 
 }  // namespace fibrecell::planner

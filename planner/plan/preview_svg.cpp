@@ -1,14 +1,11 @@
 #include "planner/plan/preview_svg.hpp"
 
-#include "planner/plan/text_file.hpp"
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -243,9 +240,10 @@ std::string preview_index_html(const std::vector<ToolpathLayer>& layers) {
     return out;
 }
 
-void write_preview(const std::string& dir, const std::vector<ToolpathLayer>& layers,
-                   const std::vector<LayerOutline>& outlines,
-                   const std::vector<const TriangleScalars*>& backgrounds, PreviewOptions options) {
+std::vector<PreviewFile> preview_files(const std::vector<ToolpathLayer>& layers,
+                                       const std::vector<LayerOutline>& outlines,
+                                       const std::vector<const TriangleScalars*>& backgrounds,
+                                       PreviewOptions options) {
     if (!outlines.empty() && outlines.size() != layers.size())
         throw std::invalid_argument("preview: " + std::to_string(outlines.size()) +
                                     " outlines for " + std::to_string(layers.size()) + " layers");
@@ -253,22 +251,20 @@ void write_preview(const std::string& dir, const std::vector<ToolpathLayer>& lay
         throw std::invalid_argument("preview: " + std::to_string(backgrounds.size()) +
                                     " backgrounds for " + std::to_string(layers.size()) +
                                     " layers");
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw std::runtime_error(dir + ": cannot create the folder: " + error.message());
-
     if (!options.view_mm) {
         Eigen::AlignedBox2d view;
         for (std::size_t i = 0; i < layers.size(); ++i)
             view.extend(extent(layers[i], outlines.empty() ? nullptr : &outlines[i]));
         if (!view.isEmpty()) options.view_mm = view;
     }
-    const std::filesystem::path folder(dir);
+    std::vector<PreviewFile> files;
+    files.reserve(layers.size() + 1);
     for (std::size_t i = 0; i < layers.size(); ++i)
-        write_text_file((folder / preview_svg_name(layers[i].index)).string(),
-                        layer_svg(layers[i], outlines.empty() ? nullptr : &outlines[i],
-                                  backgrounds.empty() ? nullptr : backgrounds[i], options));
-    write_text_file((folder / "index.html").string(), preview_index_html(layers));
+        files.push_back({preview_svg_name(layers[i].index),
+                         layer_svg(layers[i], outlines.empty() ? nullptr : &outlines[i],
+                                   backgrounds.empty() ? nullptr : backgrounds[i], options)});
+    files.push_back({"index.html", preview_index_html(layers)});
+    return files;
 }
 
 }  // namespace fibrecell::planner

@@ -44,13 +44,18 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
 // the layer SVGs as images. Self-contained: no external resources.
 std::string preview_index_html(const std::vector<ToolpathLayer>& layers);
 
-// Writes `dir`/layer_NNNN.svg for every layer and `dir`/index.html, creating `dir`. All layers
-// share one view (the union of their extents) so that the slider does not jump. `outlines` and
-// `backgrounds` are empty or one per layer (a null background: none). Throws
-// std::invalid_argument on mismatched sizes, std::runtime_error naming a file it cannot write.
-void write_preview(const std::string& dir, const std::vector<ToolpathLayer>& layers,
-                   const std::vector<LayerOutline>& outlines,
-                   const std::vector<const TriangleScalars*>& backgrounds,
-                   PreviewOptions options = {});
+struct PreviewFile {
+    std::string name;  // inside preview/: "layer_0007.svg", "index.html"
+    std::string text;
+};
+
+// preview/ as files: layer_NNNN.svg for every layer and index.html. All layers share one view
+// (the union of their extents) so that the slider does not jump. `outlines` and `backgrounds` are
+// empty or one per layer (a null background: none). Throws std::invalid_argument on mismatched
+// sizes.
+std::vector<PreviewFile> preview_files(const std::vector<ToolpathLayer>& layers,
+                                       const std::vector<LayerOutline>& outlines,
+                                       const std::vector<const TriangleScalars*>& backgrounds,
+                                       PreviewOptions options = {});
 
 }  // namespace fibrecell::planner

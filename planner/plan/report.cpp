@@ -1,10 +1,8 @@
 #include "planner/plan/report.hpp"
 
-#include "planner/plan/text_file.hpp"
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 
 namespace fibrecell::planner {
@@ -82,10 +80,6 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
     report["quality"] = {{"alignment_weighted_cos", s.quality.alignment()},
                          {"density_sigma_p_correlation", s.quality.density_correlation()}};
     report["warnings"] = layers.warnings;
-}
-
-void write_json_file(const std::string& path, const nlohmann::json& value) {
-    write_text_file(path, value.dump(2) + "\n");
 }
 
 }  // namespace fibrecell::planner

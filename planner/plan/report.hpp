@@ -17,8 +17,4 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& re
 // Adds the layer stage: layers.*, fibre.*, pla.*, timings_s.layers and timings_s.per_layer_mean.
 void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& layers);
 
-// Writes `value` to `path` through a temporary file and a rename, so that a reader never sees a
-// half-written report. Throws std::runtime_error naming the path.
-void write_json_file(const std::string& path, const nlohmann::json& value);
-
 }  // namespace fibrecell::planner

@@ -1,6 +1,5 @@
 #include "planner/plan/toolpaths_json.hpp"
 
-#include "planner/plan/text_file.hpp"
 
 #include "planner/input_error.hpp"
 #include "planner/io/file_text.hpp"
@@ -10,7 +9,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 
 namespace fibrecell::planner {
@@ -149,12 +147,6 @@ std::string toolpaths_json_text(std::string_view strategy,
     }
     out += "]}\n";
     return out;
-}
-
-void write_toolpaths_json(const std::string& path, std::string_view strategy,
-                          const std::vector<ToolpathLayer>& layers) {
-    const std::string text = toolpaths_json_text(strategy, layers);
-    write_text_file(path, text);
 }
 
 ToolpathsFile read_toolpaths_json(const std::string& path) {

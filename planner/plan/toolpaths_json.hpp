@@ -23,11 +23,6 @@ struct ToolpathsFile {
 std::string toolpaths_json_text(std::string_view strategy,
                                 const std::vector<ToolpathLayer>& layers);
 
-// Writes toolpaths.json to `path` through a temporary file and a rename, so that a reader never
-// sees a half-written file. Throws std::runtime_error naming the path.
-void write_toolpaths_json(const std::string& path, std::string_view strategy,
-                          const std::vector<ToolpathLayer>& layers);
-
 // Reads a toolpaths.json back. Throws InputError naming the file and the offending key
 // ("layers[2].paths[5].role: unknown role 'x'") on anything that does not follow the format.
 ToolpathsFile read_toolpaths_json(const std::string& path);

@@ -8,10 +8,10 @@
 
 namespace fibrecell::planner {
 
-ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner) {
+ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner, double cutter_distance_mm) {
     ContourZigzagOptions options;
     options.fibre_spacing_mm = planner.fibre_spacing_mm;
-    options.cutter_distance_mm = planner.cutter_distance_mm;
+    options.cutter_distance_mm = cutter_distance_mm;
     return options;
 }
 

@@ -22,8 +22,9 @@ struct ContourZigzagOptions {
     Eigen::Vector2d start_mm{0, 0};   // nozzle before the layer: ordering starts here
 };
 
-// The options a job asks for (planner.fibre_spacing_mm, planner.cutter_distance_mm).
-ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner);
+// The options a job asks for (planner.fibre_spacing_mm) on a head whose cutter sits
+// `cutter_distance_mm` before the nozzle tip.
+ContourZigzagOptions contour_zigzag_options(const PlannerSpec& planner, double cutter_distance_mm);
 
 // Zigzag direction [deg] of CCF layer `ccf_layer` (0-based count of CCF layers).
 double contour_zigzag_angle_deg(int ccf_layer, const ContourZigzagOptions& options);

@@ -532,40 +532,45 @@ TEST(RapidWriter, AStretchLongerThanAChunkIsAnError) {
     EXPECT_NO_THROW(write_rapid_chunks(p, cell, {.max_lines = 200}));
 }
 
-TEST(RapidWriter, WritesTheDirectoryAtomically) {
-    namespace fs = std::filesystem;
+TEST(RapidWriter, EveryChunkKeepsRoomForItsReentryVersion) {
+    // A re-entry rewrites the interrupted chunk in place, with the two lines of the lift: every
+    // planned chunk leaves room for them, so the rewritten one fits the same limit.
     const RobotCellConfig cell;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("fibrecell-rapid-writer-test-" + std::to_string(::getpid())) / "rapid";
-    fs::remove_all(dir.parent_path());
-    const Generated many = generate(cell, 45);
-    write_rapid_directory(many.output, dir);
-    std::size_t files = 0;
-    for (const auto& e : fs::directory_iterator(dir)) {
-        ++files;
-        std::ifstream f(e.path(), std::ios::binary);
-        std::stringstream s;
-        s << f.rdbuf();
-        const auto it = std::find_if(
-            many.output.modules.begin(), many.output.modules.end(),
-            [&](const RapidModule& m) { return m.file_name == e.path().filename().string(); });
-        ASSERT_NE(it, many.output.modules.end());
-        EXPECT_EQ(s.str(), it->text);
-        // And the file reads back like the text.
-        EXPECT_TRUE(
-            rapid::check_module_file(e.path(), validate_options(cell, it->file_name, 45)).ok());
+    const int limit = 45;
+    const Generated g = generate(cell, limit);
+    ASSERT_GE(g.output.modules.size(), 3u);
+    for (const RapidModule& m : g.output.modules)
+        EXPECT_LE(m.lines, static_cast<std::size_t>(limit - 2)) << m.file_name;
+    for (std::size_t c = 1; c < g.output.modules.size(); ++c) {
+        const RapidModule& planned = g.output.modules[c];
+        const std::size_t from = planned.first_move;
+        PrintProgram rest;
+        rest.moves.assign(g.program.moves.begin() + static_cast<std::ptrdiff_t>(from),
+                          g.program.moves.begin() + static_cast<std::ptrdiff_t>(planned.end_move));
+        for (ProgramEvent e : g.program.events)
+            if (e.move >= from && e.move < planned.end_move) {
+                e.move -= from;
+                rest.events.push_back(e);
+            }
+        const int number = static_cast<int>(c) + 1;
+        const RapidOutput again = write_rapid_chunks(
+            rest, cell,
+            {.max_lines = limit,
+             .start_joints = g.output.joints[from - 1],
+             .reentry_lift_mm = 5,
+             .first_number = number,
+             .chunk_count = static_cast<int>(g.output.modules.size())});
+        ASSERT_EQ(again.modules.size(), 1u) << planned.file_name;
+        EXPECT_EQ(again.modules[0].file_name, planned.file_name);
+        EXPECT_LE(again.modules[0].lines, static_cast<std::size_t>(limit));
+        EXPECT_NE(again.modules[0].text.find("CRobT"), std::string::npos);
+        const rapid::CheckResult check = rapid::check_module(
+            again.modules[0].text, validate_options(cell, again.modules[0].file_name, limit));
+        for (const auto& d : check.diagnostics) ADD_FAILURE() << rapid::format(d);
+        // The same joints from the same reference: the targets' confdata are the planned ones.
+        for (std::size_t m = 0; m < rest.moves.size(); ++m)
+            EXPECT_EQ(again.joints[m], g.output.joints[from + m]) << "move " << from + m;
     }
-    EXPECT_EQ(files, many.output.modules.size());
-    // Rewriting with fewer chunks leaves no stale file behind, nor temporaries beside it.
-    const Generated one = generate(cell);
-    write_rapid_directory(one.output, dir);
-    files = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++files;
-    EXPECT_EQ(files, 1u);
-    files = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.parent_path())) ++files;
-    EXPECT_EQ(files, 1u);
-    fs::remove_all(dir.parent_path());
 }
 
 TEST(RapidWriter, WritesConfLAndTheSignalNamesFromTheConfig) {

@@ -99,7 +99,7 @@ robot:
     idle_clearance_mm: 2
     pla: {position_mm: [90, -30, 55], rpy_deg: [0, 90, 0], mass_kg: 1.5, cog_mm: [40, 1, 50]}
     ccf: {position_mm: [90, 30, 55], mass_kg: 1.5, cog_mm: [40, 1, 50]}
-  motion: {travel_speed_mm_s: 80, approach_speed_mm_s: 10, turn_speed_deg_s: 30, print_zone_mm: 0.5,
+  motion: {max_travel_speed_mm_s: 80, approach_speed_mm_s: 10, turn_speed_deg_s: 30, print_zone_mm: 0.5,
            travel_zone_mm: 2, safe_height_mm: 4, head_switch_height_mm: 25, chord_tolerance_mm: 0.05,
            min_segment_mm: 0.5, fine_allowance_s: 0.1}
   rapid: {max_chunk_lines: 3000, trigger_lag_s: 0.08, confl: true}
@@ -118,6 +118,7 @@ robot:
     // An orientation left out keeps the default nozzle orientation.
     EXPECT_TRUE(c.head.ccf.tframe.linear().isApprox(HeadConfig{}.ccf.tframe.linear()));
     EXPECT_NEAR((c.head.ccf.tframe.translation() - Eigen::Vector3d(90, 30, 55)).norm(), 0, 1e-12);
+    EXPECT_EQ(c.motion.max_travel_speed_mm_s, 80);
     EXPECT_EQ(c.motion.head_switch_height_mm, 25);
     EXPECT_EQ(c.motion.min_segment_mm, 0.5);
     EXPECT_EQ(c.rapid.max_chunk_lines, 3000);
@@ -136,8 +137,12 @@ TEST(RobotConfig, RejectsBadValuesNamingTheKey) {
     EXPECT_NE(
         error_of("robot: {rapid: {max_chunk_lines: 10}}\n").find("robot.rapid.max_chunk_lines"),
         std::string::npos);
-    EXPECT_NE(error_of("robot: {motion: {travel_speed_mm_s: 0}}\n")
-                  .find("robot.motion.travel_speed_mm_s"),
+    EXPECT_NE(error_of("robot: {motion: {max_travel_speed_mm_s: 0}}\n")
+                  .find("robot.motion.max_travel_speed_mm_s"),
+              std::string::npos);
+    // The travel speed moved to the job; an old cell file says where.
+    EXPECT_NE(error_of("robot: {motion: {travel_speed_mm_s: 100}}\n")
+                  .find("robot.motion.travel_speed_mm_s: the travel speed is the job's"),
               std::string::npos);
     EXPECT_NE(error_of("robot: {bed: {rpy_deg: [0, 0, 0], quaternion: [1, 0, 0, 0]}}\n")
                   .find("either rpy_deg or quaternion"),

@@ -1,4 +1,4 @@
-#include "daemon/cell_config.hpp"
+#include "daemon/cell/cell_config.hpp"
 
 #include "config/yaml_section.hpp"
 

@@ -84,10 +84,19 @@ TEST(ExtruderConfig, RejectsUnknownKeysAndOutOfRangeValues) {
     EXPECT_THROW(cell("link: {window_lines: 8}\n"), config::ConfigError);
     EXPECT_THROW(cell("pla: {tool: 1}\n"), config::ConfigError);  // same as ccf
     try {
-        cell("ccf: {temp_c: 900}\n");
+        cell("ccf: {max_temp_c: 900}\n");
         FAIL();
     } catch (const config::ConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find("ccf.temp_c"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("ccf.max_temp_c"), std::string::npos) << e.what();
+    }
+    // The print temperature moved to the job; an old cell file says where.
+    try {
+        cell("pla: {temp_c: 200}\n");
+        FAIL();
+    } catch (const config::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("pla.temp_c: the print temperature is the job's"),
+                  std::string::npos)
+            << e.what();
     }
     const ExtruderConfig c = cell("link: {port: /dev/ttyUSB1, baud_rate: 115200, resend_ok: never}\n");
     EXPECT_EQ(c.link.serial.device, "/dev/ttyUSB1");

@@ -73,7 +73,7 @@ TEST_F(JobSpecTest, MinimalJobGetsThePapersDefaults) {
     EXPECT_DOUBLE_EQ(j.planner.p, 1.0);
     EXPECT_DOUBLE_EQ(j.planner.fibre_spacing_mm, 1.0);
     EXPECT_EQ(j.planner.smoothing_iterations, 50);
-    EXPECT_DOUBLE_EQ(j.planner.cutter_distance_mm, 42.0);
+    EXPECT_FALSE(j.planner.cutter_distance_mm);  // the cell's, unless the job says
     EXPECT_DOUBLE_EQ(j.layers.pla_layer_height_mm, 0.8);
     EXPECT_DOUBLE_EQ(j.layers.ccf_layer_height_mm, 0.05);
     EXPECT_TRUE(j.layers.has_ccf_after(1) && j.layers.has_ccf_after(7));
@@ -82,6 +82,8 @@ TEST_F(JobSpecTest, MinimalJobGetsThePapersDefaults) {
     EXPECT_DOUBLE_EQ(j.process.ccf.speed_mm_s, 5.0);
     EXPECT_DOUBLE_EQ(j.process.ccf.nozzle_temp_c, 250.0);
     EXPECT_DOUBLE_EQ(j.process.ccf.line_width_mm, 1.2);
+    EXPECT_DOUBLE_EQ(j.process.pla.travel_speed_mm_s, 100.0);
+    EXPECT_FALSE(j.process.pla.nozzle_diameter_mm);  // the cell's mounted nozzle
 }
 
 TEST_F(JobSpecTest, LoadCaseRegionsAndBoundaryFibres) {

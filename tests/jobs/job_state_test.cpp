@@ -35,49 +35,58 @@ const std::map<S, std::map<A, Expect>>& user_table() {
           {A::pause, no("nothing is printing")},
           {A::resume, no("nothing is printing")},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("abort it first")}}},
+          {A::remove, no("abort it first")},
+          {A::replan, no("it is planning already")}}},
         {S::planned,
          {{A::start, ok(S::starting)},
           {A::pause, no("it is not printing")},
           {A::resume, no("it has not started: start it")},
           {A::abort, ok(S::aborted)},
-          {A::remove, ok(S::planned)}}},
+          {A::remove, ok(S::planned)},
+          {A::replan, ok(S::planning)}}},
         {S::starting,
          {{A::start, no("it is starting already")},
           {A::pause, no("wait until it prints, or abort it")},
           {A::resume, no("wait until it prints, or abort it")},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("abort it first")}}},
+          {A::remove, no("abort it first")},
+          {A::replan, no("its print has started: abort it first")}}},
         {S::printing,
          {{A::start, no("it is printing already")},
           {A::pause, ok(S::pausing)},
           {A::resume, no("it is not paused")},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("pause or abort it first")}}},
+          {A::remove, no("pause or abort it first")},
+          {A::replan, no("its print has started: abort it first")}}},
         {S::pausing,
          {{A::start, no("wait until it is paused, then resume it")},
           {A::pause, no("it is pausing already")},
           {A::resume, no("wait until it is paused, then resume it")},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("abort it first")}}},
+          {A::remove, no("abort it first")},
+          {A::replan, no("its print has started: abort it first")}}},
         {S::paused,
          {{A::start, no("resume it instead")},
           {A::pause, no("it is paused already")},
           {A::resume, ok(S::printing)},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("abort it first")}}},
+          {A::remove, no("abort it first")},
+          {A::replan, no("its print has started: abort it first")}}},
         {S::interrupted,
          {{A::start, no("resume or abort it")},
           {A::pause, no("it is not printing: resume or abort it")},
           {A::resume, ok(S::starting)},
           {A::abort, ok(S::aborted)},
-          {A::remove, no("resume or abort it first")}}},
+          {A::remove, no("resume or abort it first")},
+          {A::replan,
+           no("its print has started: resume it with the plan it started with, or abort it")}}},
     };
     return t;
 }
 
 Expect ended_expect(S s, A a) {
     if (a == A::remove) return ok(s);
+    if (a == A::replan && s == S::failed) return ok(S::planning);
     if (a == A::abort) return no("it has ended already");
     return no("it has ended: submit it again to print another");
 }
@@ -104,8 +113,8 @@ TEST(JobStateTest, EveryUserActionInEveryStateIsAllowedOrRefusedAsTabled) {
             }
         }
     }
-    EXPECT_EQ(allowed, 15);  // 10 states x 5 actions
-    EXPECT_EQ(refused, 35);
+    EXPECT_EQ(allowed, 17);  // 10 states x 6 actions
+    EXPECT_EQ(refused, 43);
 }
 
 TEST(JobStateTest, ServiceEventsComeOnlyFromTheirStates) {

@@ -4,6 +4,7 @@
 
 #include "planner/io/vtk_writer.hpp"
 #include "planner/mesh/structured_mesh.hpp"
+#include "tests/support/plan_inputs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,7 @@ inline void write_tension_bar(const fs::path& vtk, bool stressed = true) {
     const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 0.8}, .cells = {25, 3, 1}});
     std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
     for (auto& s : stress) s(0, 0) = 30.0;
-    planner::write_field_vtk(vtk.string(), mesh, stressed ? planner::FieldArrays{.stress = &stress}
+    fibrecell::test::write_vtk_file(vtk, mesh, stressed ? planner::FieldArrays{.stress = &stress}
                                                           : planner::FieldArrays{});
 }
 

@@ -3,6 +3,8 @@
 // `fibrecell plan` writing the same toolpaths as the library.
 #include "daemon/jobs/plan_job.hpp"
 
+#include "daemon/print/manifest.hpp"
+
 #include "job_test_files.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 
@@ -15,6 +17,7 @@
 
 using namespace fibrecell;
 using namespace fibrecell::daemon::jobs;
+using fibrecell::daemon::CellConfig;
 using fibrecell::test::read_file;
 namespace fs = std::filesystem;
 
@@ -30,9 +33,7 @@ class PlanJobTest : public ::testing::Test {
     void TearDown() override { fs::remove_all(dir_); }
 
     PlanRequest request(const std::string& out) const {
-        PlanRequest r{.job_file = dir_ / "bar.job.yaml", .out_dir = dir_ / out};
-        r.threads = 1;
-        return r;
+        return {.job_file = dir_ / "bar.job.yaml", .out_dir = dir_ / out};
     }
 
     fs::path dir_;
@@ -59,8 +60,16 @@ TEST_F(PlanJobTest, WritesThePlanDirectoryWithProgressPerStage) {
 
     const fs::path out = dir_ / "plan";
     for (const char* f : {"field.vtk", "toolpaths.json", "report.json", "preview/index.html",
-                          "rapid/FcChunk0001.mod"})
+                          "rapid/FcChunk0001.mod", "program.json", "print.json", "manifest.json"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
+    // The manifest lists every file the plan wrote, and they are as it says.
+    const daemon::print::Manifest m = daemon::print::read_manifest(out);
+    std::size_t files = 0;
+    for (const auto& e : fs::recursive_directory_iterator(out))
+        files += e.is_regular_file() && e.path().filename() != "manifest.json";
+    EXPECT_EQ(m.files.size(), files);
+    EXPECT_TRUE(daemon::print::verify_files(out, m).empty());
+    EXPECT_EQ(m.cell, daemon::print::cell_facts(CellConfig{}));
     const auto report = nlohmann::json::parse(read_file(out / "report.json"));
     EXPECT_EQ(report, r.report);
     EXPECT_EQ(report["layers"]["pla"], 1);
@@ -81,6 +90,24 @@ TEST_F(PlanJobTest, CancelStopsThePlanAndWritesNoReport) {
     EXPECT_THROW(plan_job(request("plan"), control), planner::Cancelled);
     EXPECT_FALSE(fs::exists(dir_ / "plan" / "report.json"));
     EXPECT_FALSE(fs::exists(dir_ / "plan" / "rapid"));
+    EXPECT_FALSE(fs::exists(dir_ / "plan" / "manifest.json"));
+}
+
+TEST_F(PlanJobTest, ASettingTheCellCannotPrintRefusesTheJobBeforeAnyWork) {
+    std::ofstream(dir_ / "hot.job.yaml")
+        << "name: hot\nmodel:\n  mesh: bar.vtk\nprocess:\n  pla: {nozzle_temp_c: 290}\n";
+    PlanRequest r = request("hot");
+    r.job_file = dir_ / "hot.job.yaml";
+    try {
+        plan_job(r);
+        FAIL() << "expected a refusal";
+    } catch (const daemon::print::SettingsError& e) {
+        EXPECT_NE(std::string(e.what()).find("process.pla.nozzle_temp_c: 290 degC is above the "
+                                             "cell's limit 260 degC (extruder.pla.max_temp_c)"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "hot"));
 }
 
 TEST_F(PlanJobTest, FieldStageAloneAndBadJobsFailWithTheirReason) {
@@ -111,7 +138,7 @@ TEST_F(PlanJobTest, FieldStageAloneAndBadJobsFailWithTheirReason) {
 TEST_F(PlanJobTest, CommandLineWritesWhatTheLibraryWrites) {
     plan_job(request("library"));
     const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
-                            (dir_ / "bar.job.yaml").string() + " --threads 1 --out " +
+                            (dir_ / "bar.job.yaml").string() + " --threads 2 --out " +
                             (dir_ / "cli").string() + " > " + (dir_ / "stdout.txt").string() +
                             " 2> " + (dir_ / "stderr.txt").string();
     ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir_ / "stderr.txt");

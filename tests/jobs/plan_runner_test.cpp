@@ -43,7 +43,6 @@ class PlanRunnerTest : public ::testing::Test {
     PlanRunnerOptions runner_options(int workers) const {
         PlanRunnerOptions o;
         o.workers = workers;
-        o.planner_threads = 1;
         return o;
     }
 

@@ -7,6 +7,7 @@
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "planner/toolpaths/path_order.hpp"
+#include "tests/support/plan_inputs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,7 +86,7 @@ double distance_to_outline(const LayerOutline& outline, const Eigen::Vector2d& p
 }
 
 LayerStageStats check_guarantees(const JobSpec& job) {
-    const LayerStageResult r = run_layer_stage(job, run_field_stage(job), 2);
+    const LayerStageResult r = run_layer_stage(job, fibrecell::test::field_stage_of(job));
     const double w = job.planner.fibre_spacing_mm;
     int fibre_layers = 0;
     for (std::size_t i = 0; i < r.layers.size(); ++i) {

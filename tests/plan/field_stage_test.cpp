@@ -6,6 +6,7 @@
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/mesh/structured_mesh.hpp"
+#include "tests/support/plan_inputs.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -45,7 +46,7 @@ class FieldStageTest : public ::testing::Test {
             stress_.push_back(s);
         }
         const std::string path = (dir_ / "bar.vtk").string();
-        write_field_vtk(path, mesh_, {.stress = &stress_});
+        fibrecell::test::write_vtk_file(path, mesh_, {.stress = &stress_});
         return path;
     }
 
@@ -63,7 +64,7 @@ class FieldStageTest : public ::testing::Test {
 TEST_F(FieldStageTest, UniaxialBarGivesAConsistentFieldAlongX) {
     write_bar();
     write_job();
-    const FieldStageResult r = run_field_stage(load_job_file((dir_ / "bar.job.yaml").string()));
+    const FieldStageResult r = fibrecell::test::field_stage_of(load_job_file((dir_ / "bar.job.yaml").string()));
     ASSERT_EQ(r.field.v_e.size(), mesh_.tet_count());
     EXPECT_FALSE(r.fea);
     EXPECT_EQ(r.mst.components, 1);
@@ -85,10 +86,10 @@ TEST_F(FieldStageTest, UniaxialBarGivesAConsistentFieldAlongX) {
 
 TEST_F(FieldStageTest, FailsClearlyWithoutStress) {
     mesh_ = structured_tet_mesh({.size = {2, 2, 2}, .cells = {1, 1, 1}});
-    write_field_vtk((dir_ / "bar.vtk").string(), mesh_, {});
+    fibrecell::test::write_vtk_file(dir_ / "bar.vtk", mesh_, {});
     write_job();
     try {
-        run_field_stage(load_job_file((dir_ / "bar.job.yaml").string()));
+        fibrecell::test::field_stage_of(load_job_file((dir_ / "bar.job.yaml").string()));
         FAIL() << "expected an error";
     } catch (const std::exception& e) {
         EXPECT_THAT(e.what(), ::testing::HasSubstr("carries no stress field"));

@@ -8,6 +8,7 @@
 #include "planner/mesh/structured_mesh.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/toolpaths_json.hpp"
+#include "tests/support/plan_inputs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,7 @@ class LayerStageTest : public ::testing::Test {
         const TetMesh mesh = structured_tet_mesh({.size = {100, 20, 1.6}, .cells = {50, 10, 2}});
         std::vector<StressTensor> stress(mesh.tet_count(), StressTensor::Zero());
         for (auto& s : stress) s(0, 0) = 30.0;
-        write_field_vtk((dir_ / "bar.vtk").string(), mesh, {.stress = &stress});
+        fibrecell::test::write_vtk_file(dir_ / "bar.vtk", mesh, {.stress = &stress});
         std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n"
                                                 "placement:\n  position_mm: [50, 10]\n";
     }
@@ -51,8 +52,8 @@ class LayerStageTest : public ::testing::Test {
 
 TEST_F(LayerStageTest, BarGetsAlternatingLayersAndStraightFibresAlongTheLoad) {
     const JobSpec job = load_job_file((dir_ / "bar.job.yaml").string());
-    const FieldStageResult field = run_field_stage(job);
-    const LayerStageResult r = run_layer_stage(job, field, 2);
+    const FieldStageResult field = fibrecell::test::field_stage_of(job);
+    const LayerStageResult r = run_layer_stage(job, field);
     ASSERT_EQ(r.layers.size(), 4u);
     const Head expected[] = {Head::pla, Head::ccf, Head::pla, Head::ccf};
     const double z[] = {0.8, 0.85, 1.65, 1.7};
@@ -136,7 +137,7 @@ TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
 TEST_F(LayerStageTest, BaselineStrategyProducesRingsAndZigzag) {
     JobSpec job = load_job_file((dir_ / "bar.job.yaml").string());
     job.planner.strategy = Strategy::contour_zigzag;
-    const LayerStageResult r = run_layer_stage(job, run_field_stage(job), 1);
+    const LayerStageResult r = run_layer_stage(job, fibrecell::test::field_stage_of(job));
     bool rings = false, fill = false;
     for (const auto& layer : r.layers)
         for (const auto& p : layer.paths) {

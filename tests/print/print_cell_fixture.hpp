@@ -82,9 +82,9 @@ inline std::vector<std::string> expected_board_log(const abb::PrintProgram& prog
     const auto add = [&](const std::vector<std::string>& lines) {
         out.insert(out.end(), lines.begin(), lines.end());
     };
-    add(ref.prepare(false));
-    add(ref.prepare(true));
-    add(ref.prepare(false));
+    add(ref.prepare({}, false));
+    add(ref.prepare({}, true));
+    add(ref.prepare({}, false));
     for (const abb::ProgramEvent& e : program.events) {
         const auto head = e.nozzle == abb::Nozzle::pla ? drivers::Head::pla : drivers::Head::ccf;
         if (first_line) (*first_line)[e.sequence] = out.size();

@@ -9,6 +9,7 @@
 #include "planner/io/vtk_writer.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 #include "child_process.hpp"
+#include "tests/support/plan_inputs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -59,8 +60,8 @@ class ServiceTest : public ::testing::Test {
         const auto mesh = planner::structured_tet_mesh({.size = {60, 10, 1.6}, .cells = {30, 5, 2}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
         for (auto& s : stress) s(0, 0) = 30.0;
-        planner::write_field_vtk((dir_ / "jobs/bar.vtk").string(), mesh, {.stress = &stress});
-        planner::write_field_vtk((dir_ / "jobs/bare.vtk").string(), mesh, {});
+        fibrecell::test::write_vtk_file(dir_ / "jobs/bar.vtk", mesh, {.stress = &stress});
+        fibrecell::test::write_vtk_file(dir_ / "jobs/bare.vtk", mesh, {});
         std::ofstream(dir_ / "jobs/bar.job.yaml")
             << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n";
         std::ofstream(dir_ / "jobs/broken.job.yaml")

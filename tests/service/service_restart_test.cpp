@@ -5,6 +5,7 @@
 // last confirmed event, resumes at the start of the interrupted unit and completes, and neither
 // the journal nor the board's log shows anything before the re-entry done twice. The simulated
 // robot's recorded trajectory shows the resumed run lift straight up from where it was held.
+#include "external_cell.hpp"
 #include "service_fixture.hpp"
 
 #include <gmock/gmock.h>
@@ -90,38 +91,13 @@ Journal read_journal(const fs::path& p) {
 }  // namespace
 
 TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats) {
-    const std::string bin = FIBRECELL_BINARY_DIR;
-    const fs::path board_log = dir_ / "board.log";
-    ChildProcess board(bin + "/tools/mock-gt2560",
-                       {"--daemon", "--link", (dir_ / "ttyGT2560").string(), "--time-scale",
-                        std::to_string(time_scale), "--bootloader-s", "0.2", "--hotend-tau-s", "2",
-                        "--residency-s", "0.5", "--log", board_log.string()},
-                       dir_ / "mock.log");
-    ASSERT_TRUE(board.wait_for_log("port ", 10s)) << board.log();
-    const fs::path trajectory = dir_ / "trajectory.csv";
-    ChildProcess robot(bin + "/tools/fibrecell-simcell/fibrecell-simcell",
-                       {"--time-scale", std::to_string(time_scale), "--trajectory", trajectory.string()},
-                       dir_ / "simcell.log");
-    ASSERT_TRUE(robot.wait_for_log("modbus=", 20s)) << robot.log();
-    // "fibrecell-simcell: rws=<port> modbus=<port>" (no std::regex: GCC 12 -O2 + ASan warns in it)
-    const std::string banner = robot.log();
-    const auto ports_at = banner.find("rws=");
-    ASSERT_NE(ports_at, std::string::npos) << banner;
-    int rws_port = 0, modbus_port = 0;
-    ASSERT_EQ(std::sscanf(banner.c_str() + ports_at, "rws=%d modbus=%d", &rws_port, &modbus_port), 2)
-        << banner;
-    const std::string extra = "extruder: {link: {port: " + (dir_ / "ttyGT2560").string() + "}}\n" +
-                              "rws: {port: " + std::to_string(rws_port) + "}\n" +
-                              "print: {heartbeat_timeout_s: 0.3}\n";
-    std::string config_text = read_file(write_config(extra, time_scale));
-    const auto replace = [&](const std::string& from, const std::string& to) {
-        const auto pos = config_text.find(from);
-        ASSERT_NE(pos, std::string::npos) << from;
-        config_text.replace(pos, from.size(), to);
-    };
-    replace("robot_io: {stable_reads: 1}", "robot_io: {stable_reads: 1, port: " + std::to_string(modbus_port) + "}");
-    replace("residency_s: 0.5}", "residency_s: 0.5, devices: external}");
-    std::ofstream(dir_ / "cell.yaml") << config_text;
+    ExternalCell devices(dir_, time_scale);
+    ASSERT_TRUE(devices.up());
+    const fs::path& board_log = devices.board_log();
+    const fs::path& trajectory = devices.trajectory();
+    std::ofstream(dir_ / "cell.yaml")
+        << devices.cell_yaml(read_file(write_config("", time_scale)),
+                             "print: {heartbeat_timeout_s: 0.3}\n");
 
     start_service(dir_ / "cell.yaml");
     std::int64_t id = 0;

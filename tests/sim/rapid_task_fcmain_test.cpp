@@ -69,7 +69,7 @@ Job two_chunk_job() {
     ccf.paths.push_back({PathRole::fibre, false, {{120, 150}, {150, 150}, {180, 150}}});
     Job job;
     job.program = abb::build_print_program(
-        {pla, ccf}, cell, {.pla_speed_mm_s = 30, .ccf_speed_mm_s = 20, .travel_speed_mm_s = 250});
+        {pla, ccf}, cell, {.pla_speed_mm_s = 30, .ccf_speed_mm_s = 20, .pla_travel_speed_mm_s = 250, .ccf_travel_speed_mm_s = 250});
     for (const abb::ProgramEvent& e : job.program.events)
         if (e.barrier) job.barriers.push_back(e.sequence);
     for (int max_lines = 30; max_lines < 2000; max_lines += 5) {

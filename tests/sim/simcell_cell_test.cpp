@@ -70,7 +70,7 @@ Job two_chunk_job() {
     const abb::RobotCellConfig cell;
     Job job;
     job.program = abb::build_print_program(
-        small_job(), cell, {.pla_speed_mm_s = 30, .ccf_speed_mm_s = 20, .travel_speed_mm_s = 250});
+        small_job(), cell, {.pla_speed_mm_s = 30, .ccf_speed_mm_s = 20, .pla_travel_speed_mm_s = 250, .ccf_travel_speed_mm_s = 250});
     for (int max_lines = 30; max_lines < 2000; max_lines += 5) {
         abb::RapidOutput out;
         try {

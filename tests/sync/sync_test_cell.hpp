@@ -91,7 +91,7 @@ class SyncCellTest : public ::testing::Test {
         board_.activate();
         if (preheat) {
             drivers::ExtruderController heater{drivers::ExtruderConfig{}};
-            auto done = board_.submit(heater.prepare(true));
+            auto done = board_.submit(heater.prepare({}, true));
             ASSERT_EQ(done.wait_for(20s), std::future_status::ready);
             ASSERT_TRUE(done.get().ok());
         }
@@ -210,7 +210,7 @@ class SyncCellTest : public ::testing::Test {
             const double d = ref.config().filament_diameter_mm;
             return options.pla_line_width_mm * options.pla_layer_height_mm / (std::numbers::pi * d * d / 4);
         }
-        void start() { append(lines, ref.prepare(false)); }
+        void start() { append(lines, ref.prepare({}, false)); }
         void head_switch(Head h) { append(lines, ref.select(h)); }
         void extrude_on(double path_mm, double speed) {
             append(lines, ref.prime());

@@ -109,8 +109,7 @@ TEST(ContourZigzag, NoPathShorterThanTheCutterOnAnyShape) {
 TEST(ContourZigzag, OptionsFromTheJob) {
     PlannerSpec planner;
     planner.fibre_spacing_mm = 1.5;
-    planner.cutter_distance_mm = 30;
-    const ContourZigzagOptions options = contour_zigzag_options(planner);
+    const ContourZigzagOptions options = contour_zigzag_options(planner, 30);
     EXPECT_EQ(options.fibre_spacing_mm, 1.5);
     EXPECT_EQ(options.cutter_distance_mm, 30);
 }

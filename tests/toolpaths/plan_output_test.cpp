@@ -14,6 +14,7 @@
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace fibrecell::planner {
@@ -34,13 +35,6 @@ class PlanOutput : public ::testing::Test {
     fs::path dir_;
 };
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 std::size_t count(const std::string& text, const std::string& what) {
     std::size_t n = 0;
     for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
@@ -60,8 +54,7 @@ std::vector<ToolpathLayer> two_layers() {
 TEST_F(PlanOutput, ToolpathsJsonRoundTrip) {
     const std::vector<ToolpathLayer> layers = two_layers();
     const std::string path = (dir_ / "toolpaths.json").string();
-    write_toolpaths_json(path, "contour-zigzag", layers);
-    EXPECT_FALSE(fs::exists(path + ".tmp"));
+    std::ofstream(path) << toolpaths_json_text("contour-zigzag", layers);
 
     const ToolpathsFile file = read_toolpaths_json(path);
     EXPECT_EQ(file.strategy, "contour-zigzag");
@@ -140,10 +133,13 @@ TEST_F(PlanOutput, PreviewWritesOneSvgPerLayerAndAnIndex) {
     const std::vector<double> sigma{1.0, 3.0};
     const TriangleScalars background{&mesh, sigma};
 
-    write_preview((dir_ / "preview").string(), layers, {outline, outline}, {nullptr, &background});
+    std::map<std::string, std::string> files;
+    for (auto& f : preview_files(layers, {outline, outline}, {nullptr, &background}))
+        files[f.name] = std::move(f.text);
+    ASSERT_EQ(files.size(), layers.size() + 1);
 
     for (const ToolpathLayer& layer : layers) {
-        const std::string svg = slurp(dir_ / "preview" / preview_svg_name(layer.index));
+        const std::string svg = files[preview_svg_name(layer.index)];
         ASSERT_FALSE(svg.empty());
         EXPECT_EQ(svg.rfind("<svg", 0), 0u);
         for (PathRole role :
@@ -157,8 +153,8 @@ TEST_F(PlanOutput, PreviewWritesOneSvgPerLayerAndAnIndex) {
         EXPECT_EQ(count(svg, "<path class=\"outline\""), 1u);
         EXPECT_EQ(count(svg, "<polygon class=\"field\""), layer.head == Head::ccf ? 2u : 0u);
     }
-    EXPECT_TRUE(fs::exists(dir_ / "preview" / "layer_0001.svg"));
-    const std::string index = slurp(dir_ / "preview" / "index.html");
+    EXPECT_TRUE(files.contains("layer_0001.svg"));
+    const std::string index = files["index.html"];
     EXPECT_EQ(count(index, "<li"), layers.size());
     EXPECT_EQ(count(index, "href=\"layer_0000.svg\""), 1u);
     EXPECT_EQ(count(index, "href=\"layer_0001.svg\""), 1u);
@@ -177,8 +173,7 @@ TEST_F(PlanOutput, SvgHasYUp) {
 
 TEST_F(PlanOutput, PreviewRejectsMismatchedInputs) {
     const std::vector<ToolpathLayer> layers = two_layers();
-    EXPECT_THROW(write_preview((dir_ / "p").string(), layers, {LayerOutline{}}, {}),
-                 std::invalid_argument);
+    EXPECT_THROW(preview_files(layers, {LayerOutline{}}, {}), std::invalid_argument);
     LayerMesh mesh;
     mesh.vertices = {{0, 0}, {1, 0}, {0, 1}};
     mesh.triangles = {{0, 1, 2}};

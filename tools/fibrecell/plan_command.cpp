@@ -1,7 +1,8 @@
 #include "tools/fibrecell/plan_command.hpp"
 
-#include "daemon/cell_config.hpp"
+#include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/plan_job.hpp"
+#include "daemon/jobs/thread_pool.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 
 #include <cstdio>
@@ -48,14 +49,22 @@ void print_summary(const planner::FieldStageResult& r, const std::string& out) {
     std::printf("wrote      %s/field.vtk, %s/report.json\n", out.c_str(), out.c_str());
 }
 
-void print_robot_summary(const daemon::RobotPlan& plan, const std::string& out) {
+void print_robot_summary(const daemon::print::RobotPlan& plan,
+                         const daemon::print::PrintSettings& settings, const std::string& out) {
     const auto& s = plan.program.stats;
     std::printf(
         "robot      %zu moves, %zu events (%zu barriers), %zu head switches, about %.0f min of "
         "printing; %zu RAPID modules (%zu lines) in %.3f s\n",
-        s.moves, s.events, s.barriers, s.head_switches, s.duration_s / 60.0, plan.rapid.modules,
-        plan.rapid.lines, plan.seconds);
-    std::printf("wrote      %s/rapid/\n", out.c_str());
+        s.moves, s.events, s.barriers, s.head_switches, s.duration_s / 60.0,
+        plan.rapid.stats.modules, plan.rapid.stats.lines, plan.seconds);
+    std::printf(
+        "print      PLA %.0f degC at %g mm/s (travel %g), CCF %.0f degC at %g mm/s (travel %g), "
+        "cut %g mm before each fibre path's end\n",
+        settings.pla.temp_c, settings.pla.speed_mm_s, settings.pla.travel_speed_mm_s,
+        settings.ccf.temp_c, settings.ccf.speed_mm_s, settings.ccf.travel_speed_mm_s,
+        settings.cutter_distance_mm);
+    std::printf("wrote      %s/rapid/, %s/program.json, %s/print.json, %s/manifest.json\n",
+                out.c_str(), out.c_str(), out.c_str(), out.c_str());
 }
 
 void print_layer_summary(const planner::LayerStageResult& layers, const std::string& out) {
@@ -86,8 +95,9 @@ int run_plan(const PlanArgs& args) {
         if (!args.strategy.empty())
             request.strategy = args.strategy == "field" ? planner::Strategy::field
                                                         : planner::Strategy::contour_zigzag;
-        request.threads = args.threads;
-        if (!args.cell.empty()) request.robot = daemon::load_cell_config(args.cell).robot;
+        if (!args.cell.empty()) request.cell = daemon::load_cell_config(args.cell);
+        jobs::ThreadPool pool({.threads = args.threads});
+        request.executor = &pool;
 
         std::optional<jobs::PlanJobResult> plan;
         {
@@ -99,7 +109,7 @@ int run_plan(const PlanArgs& args) {
         }
         print_summary(plan->field, args.out);
         if (plan->layers) print_layer_summary(*plan->layers, args.out);
-        if (plan->robot) print_robot_summary(*plan->robot, args.out);
+        if (plan->robot) print_robot_summary(*plan->robot, plan->settings, args.out);
         return 0;
     } catch (const std::exception& e) {
         // ConfigError, InputError, FeaError and the rest all carry a complete one-line message.
@@ -122,7 +132,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
                     "worker threads for the layers (default: all cores)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--cell", args->cell,
-                    "cell YAML for the robot program (default: the simulated cell)")
+                    "cell YAML of the cell that will print it (default: the simulated cell)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--strategy", args->strategy, "override the job's fibre strategy")
         ->check(CLI::IsMember({"field", "contour-zigzag"}));

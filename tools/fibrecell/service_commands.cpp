@@ -281,6 +281,8 @@ void add_service_commands(CLI::App& app, int& exit_code) {
     add_job_action(app, exit_code, "resume", "job.resume", "resume a paused or interrupted job", false);
     add_job_action(app, exit_code, "abort", "job.abort", "abort a job (a running print stops safely)", false);
     add_job_action(app, exit_code, "remove", "job.remove", "delete an ended job's folder", true);
+    add_job_action(app, exit_code, "replan", "job.replan",
+                   "plan a planned (or plan-failed) job again, e.g. after the cell changed", true);
     {
         auto* cmd = app.add_subcommand("watch", "follow a job's progress until it ends");
         auto c = std::make_shared<Connection>();

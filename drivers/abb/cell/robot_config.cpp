@@ -219,7 +219,11 @@ RobotCellConfig load_robot_config(config::Section s) {
     {
         config::Section m = s.section("motion");
         auto& mo = c.motion;
-        mo.travel_speed_mm_s = m.number("travel_speed_mm_s", 100, 0, 1000, true);
+        if (m.has("travel_speed_mm_s"))
+            m.fail("travel_speed_mm_s",
+                   "the travel speed is the job's (process.pla/ccf.travel_speed_mm_s); the cell "
+                   "limits it with max_travel_speed_mm_s");
+        mo.max_travel_speed_mm_s = m.number("max_travel_speed_mm_s", 250, 0, 1000, true);
         mo.approach_speed_mm_s = m.number("approach_speed_mm_s", 20, 0, 1000, true);
         mo.turn_speed_deg_s = m.number("turn_speed_deg_s", 60, 0, 500, true);
         mo.print_zone_mm = m.number("print_zone_mm", 0.3, 0, 50);

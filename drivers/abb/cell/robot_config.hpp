@@ -52,7 +52,7 @@ struct HeadConfig {
 };
 
 struct RobotMotionConfig {
-    double travel_speed_mm_s = 100;     // lift, moves at safe height
+    double max_travel_speed_mm_s = 250; // the highest lift/travel speed a job may ask for
     double approach_speed_mm_s = 20;    // the last descent onto a path start
     double turn_speed_deg_s = 60;       // reorientation at a head switch (speeddata v_ori)
     double print_zone_mm = 0.3;         // fly-by zone between print moves

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -138,26 +136,5 @@ FcStatus FcMainControl::status() {
 }
 
 std::string FcMainControl::read(const std::string& name) { return rws_.symbol(module_, name); }
-
-std::vector<ChunkFile> read_chunk_directory(const std::string& dir) {
-    namespace fs = std::filesystem;
-    std::vector<ChunkFile> chunks;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind("FcChunk", 0) != 0 || entry.path().extension() != ".mod") continue;
-        std::ifstream in(entry.path(), std::ios::binary);
-        std::ostringstream text;
-        text << in.rdbuf();
-        if (!in) throw std::runtime_error("cannot read " + entry.path().string());
-        chunks.push_back({name, text.str()});
-    }
-    if (ec) throw std::runtime_error("cannot read the chunk folder " + dir + ": " + ec.message());
-    if (chunks.empty()) throw std::runtime_error("no FcChunk*.mod in " + dir);
-    // FcChunk0001 .. FcChunk9999: four digits, so names sort in chunk order.
-    std::sort(chunks.begin(), chunks.end(),
-              [](const ChunkFile& a, const ChunkFile& b) { return a.file_name < b.file_name; });
-    return chunks;
-}
 
 }  // namespace fibrecell::drivers::abb

@@ -77,8 +77,4 @@ class FcMainControl {
     std::string module_;
 };
 
-// Reads FcChunk*.mod of a plan's rapid/ folder in chunk order. Throws std::runtime_error naming
-// the folder when it cannot be read or holds no chunk.
-std::vector<ChunkFile> read_chunk_directory(const std::string& dir);
-
 }  // namespace fibrecell::drivers::abb

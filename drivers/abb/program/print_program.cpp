@@ -53,8 +53,6 @@ class Builder {
         : cell_(cell), options_(options) {
         for (const Nozzle n : {Nozzle::pla, Nozzle::ccf})
             orientation_[index(n)] = print_orientation(cell.head, n);
-        travel_speed_ = options.travel_speed_mm_s > 0 ? options.travel_speed_mm_s
-                                                      : cell.motion.travel_speed_mm_s;
     }
 
     void add_layer(const ToolpathLayer& layer) {
@@ -160,7 +158,9 @@ class Builder {
         m.position_mm = to;
         m.orientation = orientation_[index(nozzle_)];
         m.speed_mm_s =
-            role == MoveRole::approach ? cell_.motion.approach_speed_mm_s : travel_speed_;
+            role == MoveRole::approach ? cell_.motion.approach_speed_mm_s
+            : nozzle_ == Nozzle::pla   ? options_.pla_travel_speed_mm_s
+                                       : options_.ccf_travel_speed_mm_s;
         m.turn_speed_deg_s = cell_.motion.turn_speed_deg_s;
         m.fine = fine;
         m.zone_mm = fine ? 0 : cell_.motion.travel_zone_mm;
@@ -438,7 +438,6 @@ class Builder {
     const RobotCellConfig& cell_;
     const ProgramOptions& options_;
     Eigen::Quaterniond orientation_[2];
-    double travel_speed_ = 0;
 
     PrintProgram program_;
     std::vector<ProgramIssue> issues_;

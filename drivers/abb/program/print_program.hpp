@@ -105,11 +105,13 @@ struct PrintProgram {
     ProgramStats stats;
 };
 
+// The print's own settings (daemon/print/print_settings.hpp makes them from the job and the cell).
 struct ProgramOptions {
-    double pla_speed_mm_s = 12;      // job process.pla.speed_mm_s (paper Table 2)
-    double ccf_speed_mm_s = 5;       // job process.ccf.speed_mm_s
-    double travel_speed_mm_s = 0;    // 0: the cell's motion.travel_speed_mm_s
-    double cutter_distance_mm = 42;  // job planner.cutter_distance_mm
+    double pla_speed_mm_s = 12;          // job process.pla.speed_mm_s (paper Table 2)
+    double ccf_speed_mm_s = 5;           // job process.ccf.speed_mm_s
+    double pla_travel_speed_mm_s = 100;  // job process.pla.travel_speed_mm_s: lift, travel, turn
+    double ccf_travel_speed_mm_s = 100;  // job process.ccf.travel_speed_mm_s
+    double cutter_distance_mm = 42;      // the cell's extruder.ccf.cutter_distance_mm
     double fibre_thread_s = 0;       // duration estimate per fibre path start (thread feed)
     double head_switch_s = 0;        // duration estimate per head switch (tool change, heating)
 };

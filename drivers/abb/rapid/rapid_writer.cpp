@@ -2,15 +2,11 @@
 
 #include "drivers/abb/kinematics/joint_solver.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
-#include <system_error>
 
 namespace fibrecell::drivers::abb {
 namespace {
@@ -183,8 +179,9 @@ class ChunkWriter {
         return 5 + names_.speeds.size() + names_.zones.size() + 2 + trigger_vars_ + 2 + 2;
     }
 
-    // Lines the first chunk adds for a re-entry lift: a comment and the MoveL.
-    std::size_t lift_lines() const { return options_.reentry_lift_mm > 0 ? 2 : 0; }
+    // Lines a re-entry lift takes (a comment and the MoveL). Every chunk keeps room for them, so
+    // that the re-entry version of any chunk fits the limit as well (daemon/print/print_plan).
+    static constexpr std::size_t lift_lines = 2;
 
     MoveLines lines_of(std::size_t m) const {
         MoveLines l;
@@ -194,7 +191,8 @@ class ChunkWriter {
         return l;
     }
 
-    RapidModule write(int number, int count, std::size_t first, std::size_t end) const {
+    // `lift`: the chunk starts with the re-entry lift.
+    RapidModule write(int number, int count, std::size_t first, std::size_t end, bool lift) const {
         RapidModule mod;
         char digits[16];  // room for any int: GCC checks the format against the type
         std::snprintf(digits, sizeof digits, "%04d", number);
@@ -251,7 +249,7 @@ class ChunkWriter {
             t += "    VAR triggdata tgFc" + std::to_string(i) + ";\n";
         t += "    ConfJ \\On;\n";
         t += cell_.rapid.confl ? "    ConfL \\On;\n" : "    ConfL \\Off;\n";
-        if (number == 1 && lift_lines() > 0) write_lift(t, program_.moves[first]);
+        if (lift) write_lift(t, program_.moves[first]);
         for (std::size_t m = first; m < end; ++m) write_move(t, m);
         t += "  ENDPROC\n";
         t += "ENDMODULE\n";
@@ -363,7 +361,7 @@ std::vector<std::pair<std::size_t, std::size_t>> split_chunks(const PrintProgram
     std::vector<std::pair<std::size_t, std::size_t>> chunks;
     const std::size_t n = program.moves.size();
     const std::size_t overhead = writer.overhead_lines();
-    if (overhead >= max_lines)
+    if (overhead + ChunkWriter::lift_lines >= max_lines)
         throw RapidWriteError("a chunk of at most " + std::to_string(max_lines) +
                                   " lines cannot hold its " + std::to_string(overhead) +
                                   " lines of declarations",
@@ -374,7 +372,7 @@ std::vector<std::pair<std::size_t, std::size_t>> split_chunks(const PrintProgram
     };
     std::size_t first = 0;
     while (first < n) {
-        std::size_t lines = overhead + (first == 0 ? writer.lift_lines() : 0), last_boundary = 0;
+        std::size_t lines = overhead + ChunkWriter::lift_lines, last_boundary = 0;
         bool have_boundary = false;
         std::size_t m = first;
         for (; m < n; ++m) {
@@ -419,14 +417,18 @@ RapidOutput write_rapid_chunks(const PrintProgram& program, const RobotCellConfi
     const std::size_t max_lines = static_cast<std::size_t>(
         options.max_lines > 0 ? options.max_lines : cell.rapid.max_chunk_lines);
     const auto chunks = split_chunks(program, writer, max_lines);
-    if (chunks.size() > static_cast<std::size_t>(max_chunks))
+    const int first = options.first_number;
+    if (first < 1 || chunks.size() > static_cast<std::size_t>(max_chunks - first + 1))
         throw RapidWriteError("the program needs " + std::to_string(chunks.size()) +
-                                  " chunks, more than the " + std::to_string(max_chunks) +
+                                  " chunks from FcChunk" + std::to_string(first) +
+                                  " on, more than the " + std::to_string(max_chunks) +
                                   " that four-digit chunk names allow",
                               0, -1, -1, -1);
     const int count = static_cast<int>(chunks.size());
+    const int total = options.chunk_count > 0 ? options.chunk_count : first - 1 + count;
     for (int c = 0; c < count; ++c) {
-        out.modules.push_back(writer.write(c + 1, count, chunks[c].first, chunks[c].second));
+        out.modules.push_back(writer.write(first + c, total, chunks[c].first, chunks[c].second,
+                                           c == 0 && options.reentry_lift_mm > 0));
         const RapidModule& mod = out.modules.back();
         out.stats.lines += mod.lines;
         out.stats.bytes += mod.text.size();
@@ -439,36 +441,6 @@ RapidOutput write_rapid_chunks(const PrintProgram& program, const RobotCellConfi
     out.stats.modules = out.modules.size();
     out.stats.moves = program.moves.size();
     return out;
-}
-
-void write_rapid_directory(const RapidOutput& output, const std::filesystem::path& dir) {
-    namespace fs = std::filesystem;
-    const std::string suffix = "." + std::to_string(::getpid());
-    const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-    const fs::path tmp = parent / (dir.filename().string() + ".tmp" + suffix);
-    const fs::path old = parent / (dir.filename().string() + ".old" + suffix);
-    std::error_code ec;
-    try {
-        fs::create_directories(parent);
-        fs::remove_all(tmp);
-        fs::create_directories(tmp);
-        for (const RapidModule& m : output.modules) {
-            const fs::path file = tmp / m.file_name;
-            std::ofstream f(file, std::ios::binary | std::ios::trunc);
-            f.write(m.text.data(), static_cast<std::streamsize>(m.text.size()));
-            f.close();
-            if (!f) throw std::runtime_error(file.string() + ": cannot write");
-        }
-        if (fs::exists(dir)) fs::rename(dir, old);
-        fs::rename(tmp, dir);
-        fs::remove_all(old, ec);
-    } catch (const fs::filesystem_error& e) {
-        fs::remove_all(tmp, ec);
-        throw std::runtime_error(dir.string() + ": cannot write the RAPID modules: " + e.what());
-    } catch (...) {
-        fs::remove_all(tmp, ec);
-        throw;
-    }
 }
 
 }  // namespace fibrecell::drivers::abb

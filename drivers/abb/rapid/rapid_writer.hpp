@@ -13,7 +13,6 @@
 #include "drivers/abb/program/print_program.hpp"
 
 #include <cstddef>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,8 +30,12 @@ struct RapidWriterOptions {
     JointVector start_joints{};  // joints before the first move [rad]: the first J4/J6 reference
     // A run that re-enters an interrupted print: > 0 starts the first chunk with a straight lift
     // this far up [mm] from wherever the robot stands, MoveL Offs(CRobT(..), 0, 0, lift), before
-    // the program's first move. 0: none.
+    // the program's first move. 0: none. Every chunk keeps room for these lines.
     double reentry_lift_mm = 0;
+    // The first chunk's number (FcChunk<first_number>) and the job's chunk count for the header
+    // comments (0: as many as written): a re-entry rewrites one chunk of a job in place.
+    int first_number = 1;
+    int chunk_count = 0;
 };
 
 struct RapidModule {
@@ -72,10 +75,5 @@ class RapidWriteError : public std::runtime_error {
 
 RapidOutput write_rapid_chunks(const PrintProgram& program, const RobotCellConfig& cell,
                                const RapidWriterOptions& options = {});
-
-// Writes the chunk files into `dir` (created if needed) so that a reader sees either the old
-// directory or the complete new one: the files go to a sibling temporary directory that then
-// replaces `dir`. Throws std::runtime_error naming the path.
-void write_rapid_directory(const RapidOutput& output, const std::filesystem::path& dir);
 
 }  // namespace fibrecell::drivers::abb

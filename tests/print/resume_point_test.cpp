@@ -3,14 +3,14 @@
 // event numbers below are worked out from docs/robot-program.md ("Events"), not read from the
 // program: a head switch before the first path and at each change of nozzle, extrude_on/off per
 // PLA path, fibre_start/cut/path_end per fibre path, layer_end after each layer's last path.
-#include "daemon/jobs/resume_point.hpp"
+#include "daemon/print/resume_point.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
 using namespace fibrecell;
-using namespace fibrecell::daemon::jobs;
+using namespace fibrecell::daemon::print;
 using drivers::abb::EventKind;
 using drivers::abb::MoveRole;
 using drivers::abb::Nozzle;

@@ -1,8 +1,8 @@
-// The robot program of a run that re-enters an interrupted print (daemon/service/print_plan.hpp),
+// The robot program of a run that re-enters an interrupted print (daemon/print/print_plan.hpp),
 // on a small hand-made program: PLA layer 0 (one square), CCF layer 1 (two straight fibre paths).
 // The robot was held inside the interrupted unit, at its layer's height: the run must rise in a
 // straight line to the travel height above the unit's start before it comes down there.
-#include "daemon/service/print_plan.hpp"
+#include "daemon/print/print_plan.hpp"
 
 #include "drivers/abb/rapid/rapid_writer.hpp"
 
@@ -34,8 +34,8 @@ class ReentryProgramTest : public ::testing::Test {
 
     // Checks the run that re-enters after `last_confirmed`; returns it.
     drivers::abb::PrintProgram checked_run(std::int64_t last_confirmed) {
-        const daemon::jobs::ResumePoint r = daemon::jobs::resume_point(program_, last_confirmed);
-        const auto run = daemon::service::reentry_program(program_, r);
+        const daemon::print::ResumePoint r = daemon::print::resume_point(program_, last_confirmed);
+        const auto run = daemon::print::reentry_program(program_, r);
         const auto& approach = program_.moves.at(r.first_move);
         EXPECT_EQ(run.moves.size(), program_.moves.size() - r.first_move + 1);
         const auto& rise = run.moves.at(0);

@@ -1,10 +1,10 @@
-#include "daemon/jobs/resume_point.hpp"
+#include "daemon/print/resume_point.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-namespace fibrecell::daemon::jobs {
+namespace fibrecell::daemon::print {
 namespace {
 
 using drivers::abb::EventKind;
@@ -95,4 +95,4 @@ ResumePoint resume_point(const PrintProgram& program, std::int64_t last_confirme
     return r;
 }
 
-}  // namespace fibrecell::daemon::jobs
+}  // namespace fibrecell::daemon::print

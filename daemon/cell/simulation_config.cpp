@@ -1,4 +1,4 @@
-#include "daemon/simulation_config.hpp"
+#include "daemon/cell/simulation_config.hpp"
 
 #include <filesystem>
 

@@ -6,7 +6,7 @@
 #include "drivers/abb/modbus/robot_io_config.hpp"
 #include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/extruder/extruder_config.hpp"
-#include "daemon/simulation_config.hpp"
+#include "daemon/cell/simulation_config.hpp"
 
 #include "config/yaml_section.hpp"
 

@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace fibrecell::daemon::jobs {
+namespace fibrecell::daemon::print {
 
 enum class ResumeUnit { fibre_path, pla_layer };
 
@@ -45,4 +45,4 @@ struct ResumePoint {
 // last_confirmed: 0 (nothing done) .. program.events.size(). Throws std::invalid_argument outside.
 ResumePoint resume_point(const drivers::abb::PrintProgram& program, std::int64_t last_confirmed);
 
-}  // namespace fibrecell::daemon::jobs
+}  // namespace fibrecell::daemon::print

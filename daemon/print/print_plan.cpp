@@ -1,0 +1,122 @@
+#include "daemon/print/print_plan.hpp"
+
+#include "daemon/print/program_file.hpp"
+#include "drivers/abb/rapid/rapid_writer.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+namespace fibrecell::daemon::print {
+namespace {
+
+namespace abb = drivers::abb;
+namespace fs = std::filesystem;
+
+std::string read_plan_file(const fs::path& dir, const std::string& name) {
+    std::ifstream in(dir / name, std::ios::binary);
+    std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) throw std::invalid_argument((dir / name).string() + ": cannot be read");
+    return s;
+}
+
+bool listed(const Manifest& m, const std::string& name) {
+    return std::any_of(m.files.begin(), m.files.end(),
+                       [&](const ManifestEntry& e) { return e.path == name; });
+}
+
+// The chunk holding move `move` (0-based index into the chunk table).
+std::size_t chunk_of(const PrintFile& print, std::size_t move) {
+    for (std::size_t c = 0; c < print.chunks.size(); ++c)
+        if (move >= print.chunks[c].first_move && move < print.chunks[c].end_move) return c;
+    throw std::invalid_argument("print.json: no chunk holds move " + std::to_string(move + 1));
+}
+
+}  // namespace
+
+abb::PrintProgram program_tail(const abb::PrintProgram& program, std::size_t first_move,
+                               std::size_t end_move, std::int64_t first_event) {
+    if (end_move == 0 || end_move > program.moves.size()) end_move = program.moves.size();
+    abb::PrintProgram tail;
+    tail.moves.assign(program.moves.begin() + static_cast<std::ptrdiff_t>(first_move),
+                      program.moves.begin() + static_cast<std::ptrdiff_t>(end_move));
+    for (const abb::ProgramEvent& e : program.events) {
+        if (e.move < first_move || e.move >= end_move || e.sequence < first_event) continue;
+        abb::ProgramEvent moved = e;
+        moved.move -= first_move;
+        tail.events.push_back(moved);
+    }
+    tail.stats = program.stats;
+    return tail;
+}
+
+abb::PrintProgram reentry_program(const abb::PrintProgram& program, const ResumePoint& resume,
+                                  std::size_t end_move) {
+    // build_print_program ends every travel above the next path start, then approaches.
+    if (resume.first_move == 0 || resume.first_move >= program.moves.size())
+        throw std::invalid_argument("re-entry: move " + std::to_string(resume.first_move) +
+                                    " is no approach after a travel");
+    abb::PrintProgram run =
+        program_tail(program, resume.first_move - 1, end_move, resume.first_event);
+    abb::ProgramMove& rise = run.moves.front();
+    rise.role = abb::MoveRole::travel;
+    rise.joint = false;  // straight up and over, not a joint move's curve
+    rise.fine = true;
+    rise.zone_mm = 0;
+    rise.length_mm = 0;  // from wherever the robot was held
+    return run;
+}
+
+PrintPlan load_print_plan(const fs::path& plan_dir, const CellConfig& cell,
+                          std::optional<std::int64_t> last_confirmed) {
+    const Manifest manifest = check_plan(plan_dir, cell);
+    if (!listed(manifest, "print.json") || !listed(manifest, "program.json"))
+        throw PlanRefused("the plan has no print (print.json, program.json): it was planned with "
+                          "--stage field; plan the job whole");
+    PrintPlan p;
+    p.print = parse_print_json(read_plan_file(plan_dir, "print.json"),
+                               (plan_dir / "print.json").string());
+    ProgramFile program = parse_program_json(read_plan_file(plan_dir, "program.json"),
+                                             (plan_dir / "program.json").string());
+    p.program = std::move(program.program);
+    p.joints = std::move(program.joints);
+    p.chunk_count = static_cast<int>(p.print.chunks.size());
+
+    std::size_t first_stored = 0;  // the first planned chunk this run uploads as it is
+    if (last_confirmed) {
+        p.resume = resume_point(p.program, *last_confirmed);
+        if (p.resume->nothing_left) {
+            p.first_event = static_cast<std::int64_t>(p.program.events.size()) + 1;
+            p.first_chunk = p.chunk_count + 1;
+            return p;
+        }
+        p.first_event = p.resume->first_event;
+        p.skip_events = p.resume->done_in_unit;
+        // The interrupted chunk, from the travel into the unit on, with the lift first.
+        const std::size_t rise = p.resume->first_move - 1;
+        const std::size_t c = chunk_of(p.print, rise);
+        const ChunkEntry& entry = p.print.chunks[c];
+        const abb::RapidOutput rapid = abb::write_rapid_chunks(
+            reentry_program(p.program, *p.resume, entry.end_move), cell.robot,
+            {.job_name = p.print.job,
+             .start_joints = rise > 0 ? p.joints[rise - 1] : abb::JointVector{},
+             .reentry_lift_mm = cell.robot.motion.safe_height_mm,
+             .first_number = static_cast<int>(c) + 1,
+             .chunk_count = p.chunk_count});
+        if (rapid.modules.size() != 1)
+            throw std::invalid_argument("re-entry: the rest of " + entry.file + " needs " +
+                                        std::to_string(rapid.modules.size()) + " chunks, not one");
+        p.chunks.push_back({rapid.modules.front().file_name, rapid.modules.front().text});
+        p.first_chunk = static_cast<int>(c) + 1;
+        first_stored = c + 1;
+    }
+    for (std::size_t c = first_stored; c < p.print.chunks.size(); ++c) {
+        const std::string& file = p.print.chunks[c].file;
+        p.chunks.push_back({fs::path(file).filename().string(), read_plan_file(plan_dir, file)});
+    }
+    return p;
+}
+
+}  // namespace fibrecell::daemon::print

@@ -1,0 +1,99 @@
+// The one durable writer: files replaced whole (a reader sees the old or the new content), no
+// temporary left behind, unique temporary names per writer (two writers of one file never share
+// one), missing folders made, and appends one line at a time.
+#include "config/durable_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace fibrecell::config;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t entries(const fs::path& dir) {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& e : fs::recursive_directory_iterator(dir)) ++n;
+    return n;
+}
+
+class DurableFileTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::string tmpl = (fs::temp_directory_path() / "durable-XXXXXX").string();
+        dir_ = ::mkdtemp(tmpl.data());
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(DurableFileTest, ReplacesAFileWholeAndLeavesNoTemporary) {
+    write_file_durably(dir_ / "state.json", "one");
+    write_file_durably(dir_ / "state.json", "two, longer");
+    EXPECT_EQ(slurp(dir_ / "state.json"), "two, longer");
+    EXPECT_EQ(entries(dir_), 1u);
+    EXPECT_THROW(write_file_durably(dir_ / "missing" / "x", "y"), std::system_error);
+}
+
+TEST_F(DurableFileTest, ManyFilesCommittedTogetherInFoldersItMakes) {
+    DurableFiles plan(dir_ / "plan");
+    plan.write("toolpaths.json", "{}\n");
+    plan.write("rapid/FcChunk0001.mod", "MODULE FcChunk0001\n");
+    plan.write("preview/a/b/layer_0001.svg", "<svg/>");
+    plan.write("toolpaths.json", "{\"v\": 2}\n");  // again: replaced
+    plan.commit();
+    EXPECT_EQ(slurp(dir_ / "plan" / "toolpaths.json"), "{\"v\": 2}\n");
+    EXPECT_EQ(slurp(dir_ / "plan" / "rapid" / "FcChunk0001.mod"), "MODULE FcChunk0001\n");
+    EXPECT_EQ(slurp(dir_ / "plan" / "preview" / "a" / "b" / "layer_0001.svg"), "<svg/>");
+    for (const auto& e : fs::recursive_directory_iterator(dir_))
+        EXPECT_FALSE(is_leftover_temp_file(e.path())) << e.path();
+    EXPECT_EQ(entries(dir_ / "plan"), 7u);  // 3 files, 4 folders
+}
+
+TEST_F(DurableFileTest, WritersOfOneFileNeverShareATemporary) {
+    // Two threads replace the same file many times: every read sees one writer's whole text.
+    const std::string a(100000, 'a'), b(50000, 'b');
+    std::vector<std::thread> writers;
+    for (const std::string* text : {&a, &b})
+        writers.emplace_back([&, text] {
+            for (int i = 0; i < 50; ++i) write_file_durably(dir_ / "shared", *text);
+        });
+    for (int i = 0; i < 50; ++i) {
+        const std::string now = slurp(dir_ / "shared");
+        if (!now.empty()) {
+            EXPECT_TRUE(now == a || now == b) << now.size() << " bytes";
+        }
+    }
+    for (auto& t : writers) t.join();
+    EXPECT_EQ(entries(dir_), 1u);
+}
+
+TEST_F(DurableFileTest, TemporaryNamesAreRecognised) {
+    EXPECT_TRUE(is_leftover_temp_file(dir_ / "state.json.tmp-1234-7"));
+    EXPECT_FALSE(is_leftover_temp_file(dir_ / "state.json"));
+}
+
+TEST_F(DurableFileTest, AppendsWholeLines) {
+    {
+        DurableAppender journal(dir_ / "journal.jsonl");
+        journal.append("{\"seq\":1}");
+        journal.append("{\"seq\":2}");
+    }
+    DurableAppender again(dir_ / "journal.jsonl");
+    again.append("{\"seq\":3}");
+    EXPECT_EQ(slurp(dir_ / "journal.jsonl"), "{\"seq\":1}\n{\"seq\":2}\n{\"seq\":3}\n");
+}

@@ -1,0 +1,85 @@
+#pragma once
+// The simulated devices as processes of their own, like the real ones on a cell: the mock GT2560
+// (mock-gt2560, logging every command it runs) and the simulated IRC5 (fibrecell-simcell,
+// recording its trajectory). ServiceTest's cell YAML then points fibrecelld's real drivers at
+// them (simulation.devices: external).
+#include "child_process.hpp"
+#include "service_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace fibrecell::test {
+
+class ExternalCell {
+  public:
+    ExternalCell(const fs::path& dir, double time_scale)
+        : board_log_(dir / "board.log"), trajectory_(dir / "trajectory.csv"), tty_(dir / "ttyGT2560") {
+        const std::string bin = FIBRECELL_BINARY_DIR;
+        const std::string scale = std::to_string(time_scale);
+        board_ = std::make_unique<ChildProcess>(
+            bin + "/tools/mock-gt2560",
+            std::vector<std::string>{"--daemon", "--link", tty_.string(), "--time-scale", scale,
+                                     "--bootloader-s", "0.2", "--hotend-tau-s", "2",
+                                     "--residency-s", "0.5", "--log", board_log_.string()},
+            dir / "mock.log");
+        robot_ = std::make_unique<ChildProcess>(
+            bin + "/tools/fibrecell-simcell/fibrecell-simcell",
+            std::vector<std::string>{"--time-scale", scale, "--trajectory", trajectory_.string()},
+            dir / "simcell.log");
+    }
+
+    // Waits until both are up and reads the simulated IRC5's ports; false (with the reason
+    // reported) when one did not start.
+    bool up() {
+        if (!board_->wait_for_log("port ", 10s)) {
+            ADD_FAILURE() << board_->log();
+            return false;
+        }
+        if (!robot_->wait_for_log("modbus=", 20s)) {
+            ADD_FAILURE() << robot_->log();
+            return false;
+        }
+        // "fibrecell-simcell: rws=<port> modbus=<port>"
+        const std::string banner = robot_->log();
+        const auto at = banner.find("rws=");
+        if (at == std::string::npos ||
+            std::sscanf(banner.c_str() + at, "rws=%d modbus=%d", &rws_port_, &modbus_port_) != 2) {
+            ADD_FAILURE() << banner;
+            return false;
+        }
+        return true;
+    }
+
+    // The cell YAML of ServiceTest::write_config, changed to use these devices; `extra` is added.
+    std::string cell_yaml(const std::string& config_text, const std::string& extra = "") const {
+        std::string text = config_text;
+        const auto replace = [&](const std::string& from, const std::string& to) {
+            const auto pos = text.find(from);
+            if (pos == std::string::npos) {
+                ADD_FAILURE() << "no '" << from << "' in the cell YAML";
+                return;
+            }
+            text.replace(pos, from.size(), to);
+        };
+        replace("robot_io: {stable_reads: 1}",
+                "robot_io: {stable_reads: 1, port: " + std::to_string(modbus_port_) + "}");
+        replace("residency_s: 0.5}", "residency_s: 0.5, devices: external}");
+        return text + "extruder: {link: {port: " + tty_.string() + "}}\n" +
+               "rws: {port: " + std::to_string(rws_port_) + "}\n" + extra;
+    }
+
+    const fs::path& board_log() const { return board_log_; }
+    const fs::path& trajectory() const { return trajectory_; }
+
+  private:
+    fs::path board_log_, trajectory_, tty_;
+    std::unique_ptr<ChildProcess> board_, robot_;
+    int rws_port_ = 0, modbus_port_ = 0;
+};
+
+}  // namespace fibrecell::test

@@ -1,0 +1,196 @@
+// One plan, one truth, with fibrecelld as its users run it: what prints is the plan directory as
+// planned, checked against its manifest with the system's sha256sum; a plan for a cell that has
+// changed is refused until it is replanned; a damaged one is refused; a service killed while it
+// writes a plan never leaves a planned job with a bad file; and the job's settings reach the
+// board (its own log of what it ran) and the robot (the RAPID speed data).
+#include "external_cell.hpp"
+#include "service_fixture.hpp"
+
+#include <gmock/gmock.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <sstream>
+#include <thread>
+
+using namespace fibrecell;
+using namespace fibrecell::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+fs::path plan_dir(const fs::path& state, std::int64_t id) {
+    return state / "jobs" / std::to_string(id) / "plan";
+}
+
+// The plan's files against its manifest, by sha256sum (not the service's own check).
+bool plan_verifies(const fs::path& plan, std::string& why) {
+    const std::string text = read_file(plan / "manifest.json");
+    const json m = json::parse(text, nullptr, false);
+    if (m.is_discarded() || !m.contains("files")) {
+        why = "no readable manifest.json: " + text;
+        return false;
+    }
+    std::ofstream list(plan / ".." / "sums.txt");
+    for (const json& f : m["files"]) list << f.value("sha256", "") << "  " << f.value("path", "") << "\n";
+    list.close();
+    const std::string cmd = "cd " + plan.string() + " && sha256sum --quiet -c ../sums.txt > ../sums.out 2>&1";
+    if (std::system(cmd.c_str()) != 0) {
+        why = read_file(plan / ".." / "sums.out");
+        return false;
+    }
+    return true;
+}
+
+std::string state_on_disk(const fs::path& state, std::int64_t id) {
+    const json s = json::parse(read_file(state / "jobs" / std::to_string(id) / "state.json"), nullptr, false);
+    return s.is_discarded() ? "" : s.value("state", "");
+}
+
+}  // namespace
+
+TEST_F(ServiceTest, APlanForACellThatChangedIsRefusedUntilItIsReplanned) {
+    start_service(write_config());
+    std::int64_t id = 0;
+    {
+        auto c = client();
+        id = submit_bar(c, false);
+        ASSERT_EQ(wait_for_state(c, id, "planned").value("state", ""), "planned");
+    }
+    ASSERT_TRUE(service_->terminate(20s));
+    // The bed was moved 10 mm: every target of the plan is 10 mm off on this cell.
+    start_service(write_config("robot: {bed: {position_mm: [390, -150, 100]}}\n"));
+    auto c = client();
+    EXPECT_EQ(c.call("job.start", {{"job", id}}).value("state", ""), "starting");
+    const json refused = wait_for_state(c, id, "planned");
+    ASSERT_EQ(refused.value("state", ""), "planned") << refused.dump(2);
+    EXPECT_THAT(refused.value("reason", ""),
+                HasSubstr("the cell changed since the job was planned (robot.bed.position_mm: "
+                          "[380.0,-150.0,100.0] when planned, [390.0,-150.0,100.0] now); replan "
+                          "the job to print it on this cell"));
+    EXPECT_FALSE(refused.contains("result"));  // nothing ran
+    // Replanned, by the CLI as an operator would, it prints.
+    const std::string cmd = std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell replan " +
+                            std::to_string(id) + " --socket " + socket().string() + " > " +
+                            (dir_ / "replan.out").string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir_ / "replan.out");
+    EXPECT_THAT(read_file(dir_ / "replan.out"), HasSubstr("job " + std::to_string(id) + ": planning"));
+    ASSERT_EQ(wait_for_state(c, id, "planned").value("state", ""), "planned");
+    const json manifest = json::parse(read_file(plan_dir(state_dir(), id) / "manifest.json"));
+    EXPECT_EQ(manifest["cell"]["robot"]["bed"]["position_mm"], json::array({390.0, -150.0, 100.0}));
+    c.call("job.start", {{"job", id}});
+    const json done = wait_for_state(c, id, "completed", 120s);
+    EXPECT_EQ(done.value("state", ""), "completed") << done.dump(2) << service_->log();
+    // A job that is printing or done cannot be replanned.
+    try {
+        c.call("job.replan", {{"job", id}});
+        ADD_FAILURE() << "a completed job was replanned";
+    } catch (const api::ApiCallError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("it has ended"));
+    }
+}
+
+TEST_F(ServiceTest, ADamagedPlanIsRefusedNamingTheFile) {
+    start_service(write_config());
+    auto c = client();
+    const std::int64_t id = submit_bar(c, false);
+    ASSERT_EQ(wait_for_state(c, id, "planned").value("state", ""), "planned");
+    const fs::path chunk = plan_dir(state_dir(), id) / "rapid" / "FcChunk0001.mod";
+    std::string text = read_file(chunk);
+    ASSERT_FALSE(text.empty());
+    text.resize(text.size() - 10);  // a write cut short by a power loss
+    std::ofstream(chunk, std::ios::binary | std::ios::trunc) << text;
+    c.call("job.start", {{"job", id}});
+    const json refused = wait_for_state(c, id, "planned");
+    EXPECT_THAT(refused.value("reason", ""),
+                HasSubstr("the plan is damaged (rapid/FcChunk0001.mod: "));
+    EXPECT_THAT(refused.value("reason", ""), HasSubstr("replan the job"));
+}
+
+TEST_F(ServiceTest, KilledWhileWritingAPlanNeverLeavesAPlannedJobWithABadFile) {
+    // Killed the moment a plan file appears (the field file first, a RAPID chunk, the manifest
+    // last): the job on the disk is still planning, or planned with every file as its manifest
+    // says; after the restart it ends planned with a plan that verifies.
+    for (const char* file : {"field.vtk", "rapid/FcChunk0001.mod", "manifest.json"}) {
+        SCOPED_TRACE(file);
+        start_service(write_config());
+        std::int64_t id = 0;
+        {
+            auto c = client();
+            id = submit_bar(c, false);
+        }
+        const fs::path target = plan_dir(state_dir(), id) / file;
+        const auto end = std::chrono::steady_clock::now() + 60s;
+        while (!fs::exists(target) && std::chrono::steady_clock::now() < end) {
+        }
+        ASSERT_TRUE(fs::exists(target));
+        service_->kill_now();
+        const std::string on_disk = state_on_disk(state_dir(), id);
+        std::string why;
+        if (on_disk == "planned") EXPECT_TRUE(plan_verifies(plan_dir(state_dir(), id), why)) << why;
+        else EXPECT_EQ(on_disk, "planning");
+        start_service(write_config());
+        auto c = client();
+        const json planned = wait_for_state(c, id, "planned");
+        ASSERT_EQ(planned.value("state", ""), "planned") << planned.dump(2);
+        EXPECT_TRUE(plan_verifies(plan_dir(state_dir(), id), why)) << why;
+        ASSERT_TRUE(service_->terminate(20s));
+    }
+}
+
+TEST_F(ServiceTest, TheJobsSettingsReachTheBoardAndTheRobot) {
+    constexpr double time_scale = 50;
+    ExternalCell devices(dir_, time_scale);
+    ASSERT_TRUE(devices.up());
+    std::ofstream(dir_ / "cell.yaml") << devices.cell_yaml(read_file(write_config("", time_scale)));
+    std::ofstream(dir_ / "jobs/bar.job.yaml")
+        << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n"
+           "process:\n"
+           "  pla: {nozzle_temp_c: 215, travel_speed_mm_s: 80, line_width_mm: 0.6}\n"
+           "  ccf: {nozzle_temp_c: 245, travel_speed_mm_s: 90}\n";
+    start_service(dir_ / "cell.yaml");
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    const json done = wait_for_state(c, id, "completed", 180s);
+    ASSERT_EQ(done.value("state", ""), "completed") << done.dump(2) << service_->log();
+
+    // The board ran the job's temperatures (pre-flight heat-up: M104 both, then M109 both).
+    const std::string log = read_file(devices.board_log());
+    for (const char* line : {"M104 T0 S215", "M104 T1 S245", "M109 T0 S215", "M109 T1 S245"})
+        EXPECT_THAT(log, HasSubstr(line));
+    EXPECT_THAT(log, ::testing::Not(HasSubstr(" S200")));  // not the cell's old defaults
+    EXPECT_THAT(log, ::testing::Not(HasSubstr(" S250")));
+    // The PLA flow of a 0.6 mm line on 0.8 mm layers from 1.75 mm filament: the metered feed at
+    // 12 mm/s of path runs at 12 * 0.6 * 0.8 / (pi 1.75^2 / 4) mm/s of filament (F per minute).
+    const auto feed = [](double line_width_mm) {
+        char f[32];
+        std::snprintf(f, sizeof f, " F%.1f\n",
+                      12 * line_width_mm * 0.8 / (std::numbers::pi * 1.75 * 1.75 / 4) * 60);
+        return std::string(f);
+    };
+    EXPECT_THAT(log, HasSubstr(feed(0.6)));
+    EXPECT_THAT(log, ::testing::Not(HasSubstr(feed(0.8))));  // the job default's
+
+    // The robot: the RAPID speed data for travel are the job's, per nozzle.
+    std::string rapid;
+    for (const auto& e : fs::directory_iterator(plan_dir(state_dir(), id) / "rapid")) rapid += read_file(e.path());
+    EXPECT_THAT(rapid, ::testing::ContainsRegex("speeddata vFcTravel[_0-9]* := \\[80,"));
+    EXPECT_THAT(rapid, ::testing::ContainsRegex("speeddata vFcTravel[_0-9]* := \\[90,"));
+    EXPECT_THAT(rapid, ::testing::Not(HasSubstr(":= [100,")));  // the job default's
+}
+
+TEST_F(ServiceTest, ASettingTheCellCannotPrintRefusesTheSubmitAndStoresNothing) {
+    start_service(write_config());
+    auto c = client();
+    std::ofstream(dir_ / "jobs/hot.job.yaml")
+        << "name: hot\nmodel:\n  mesh: bar.vtk\nplanner: {cutter_distance_mm: 35}\n";
+    try {
+        c.call("job.submit", submit_params(dir_ / "jobs/hot.job.yaml", "bar.vtk", false), 30s);
+        ADD_FAILURE() << "submitted";
+    } catch (const api::ApiCallError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("planner.cutter_distance_mm: 35 mm, but the cell's cutter "
+                                        "sits 42 mm before the nozzle tip"));
+    }
+    EXPECT_TRUE(c.call("job.list", json::object()).empty());
+}
