@@ -118,7 +118,9 @@ void PlanRunner::plan_one(std::int64_t id) {
         store_.set_progress(id, p);
         if (progress_observer) progress_observer(id, p);
     };
-    PlanRequest request{.job_file = ticket->job_file, .out_dir = ticket->plan_dir};
+    PlanRequest request;
+    request.job_file = ticket->job_file;
+    request.out_dir = ticket->plan_dir;
     request.cell = options_.cell;
     request.executor = options_.executor;
     std::optional<JobRecord> result;

@@ -57,7 +57,7 @@ ExtruderConfig load_extruder_config(config::Section s) {
         moved_temperature(f);
         c.ccf_nozzle_diameter_mm = f.number("nozzle_diameter_mm", 1.0, 0.05, 5);
         c.ccf_max_temp_c = f.number("max_temp_c", 260, 0, 450);
-        c.cutter_distance_mm = f.number("cutter_distance_mm", 42, 0, 500);
+        c.cutter_distance_mm = f.number("cutter_distance_mm", c.cutter_distance_mm, 0, 500);
         c.thread_speed_mm_s = f.number("thread_speed_mm_s", 5, 0, 100, true);
         f.finish();
     }

@@ -18,7 +18,7 @@ namespace fibrecell::planner {
 struct FibreLayerOptions {
     LayerFieldOptions field;         // smoothing iterations, p
     double spacing_mm = 1.0;         // W
-    double cutter_distance_mm = 42;  // fibre paths shorter than this cannot be laid
+    double cutter_distance_mm = paper_cutter_distance_mm;  // shorter fibre paths cannot be laid
     // A piece none of whose tets carries more tension than this gets no fibres: isovalues are
     // relative to the piece's own range, so without this a piece with only the rule-3 marker
     // (sigma_e = 1e-5) would be filled like a loaded one.

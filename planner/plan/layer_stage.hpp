@@ -45,7 +45,7 @@ struct LayerStageResult {
 struct LayerStageOptions {
     // Cutter to nozzle tip on the cell that prints the job: shorter fibre paths cannot be laid
     // and are dropped (the print settings give the cell's value, daemon/print/print_settings).
-    double cutter_distance_mm = 42;
+    double cutter_distance_mm = paper_cutter_distance_mm;
     // Runs the independent layers; null: one after another on the calling thread.
     Executor* executor = nullptr;
 };

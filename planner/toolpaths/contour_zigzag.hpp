@@ -16,7 +16,7 @@ struct ContourZigzagOptions {
     int boundary_rings = 2;           // fibre-boundary rings per island
     double base_angle_deg = 0;        // zigzag direction of CCF layer 0, ccw from +x
     double angle_step_deg = 45;       // turn of the zigzag direction per CCF layer
-    double cutter_distance_mm = 42;   // shorter paths are dropped
+    double cutter_distance_mm = paper_cutter_distance_mm;  // shorter paths are dropped
     double max_link_spacings = 4;     // longest boundary link in the zigzag [W]
     double arc_tolerance_mm = 0.002;  // round joins of the offsets
     Eigen::Vector2d start_mm{0, 0};   // nozzle before the layer: ordering starts here

@@ -9,6 +9,10 @@
 
 namespace fibrecell::planner {
 
+// The paper's head (Section 5): its cutter sits 42 mm before the nozzle tip. The default of the
+// planner's options for direct callers; a plan uses the cell's (daemon/print/print_settings.hpp).
+inline constexpr double paper_cutter_distance_mm = 42;
+
 enum class Head { pla, ccf };
 
 enum class PathRole {
