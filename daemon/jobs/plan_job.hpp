@@ -1,6 +1,6 @@
 #pragma once
 // The one way a job is planned: read the job YAML, run the planner's stages and write the plan
-// directory of contracts.md (field.vtk, toolpaths.json, preview/, rapid/, report.json). The
+// directory of docs/contracts.md (field.vtk, toolpaths.json, preview/, rapid/, report.json). The
 // offline `fibrecell plan` and the service's planning workers both call plan_job.
 //
 //   PlanRequest r{.job_file = "loop.job.yaml", .out_dir = "plan"};
