@@ -1,6 +1,7 @@
 // Benchmark of slicing (paper Section 4.2): the slice index, one cross-section per layer and its
 // outline, on a structured part of the paper's largest size (112k tets, Shell in Table 1) and on
-// the reference parts. Run from a Release build:
+// the reference parts (the shared folder beside the repository; skipped, with the reason, when
+// the data is missing). Run from a Release build:
 //   build/release/bench/slice_bench [--reference ../shared/data/reference-fea]
 
 #include "planner/io/read_model.hpp"
@@ -10,10 +11,10 @@
 #include "planner/layers/slice.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 #include "planner/stopwatch.hpp"
+#include "tests/support/shared_data.hpp"
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -65,7 +66,7 @@ void bench_part(const std::string& name, const TetMesh& model, int repeats = 5) 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string reference = FIBRECELL_SHARED_DIR "/data/reference-fea";
+    std::string reference = fibrecell::test::reference_fea_dir().string();
     for (int i = 1; i + 1 < argc; ++i)
         if (std::string(argv[i]) == "--reference") reference = argv[i + 1];
 
@@ -87,11 +88,13 @@ int main(int argc, char** argv) {
     bench_part("plate-112k", structured_tet_mesh(plate));
 
     for (const char* part : {"bunnyhead", "YogaNew"}) {
-        const std::string base = reference + "/" + part + "/" + part;
-        if (!std::filesystem::exists(base + ".tet")) {
-            std::printf("%-12s (not found: %s.tet)\n", part, base.c_str());
+        // Only the mesh is read here, but a data set is whole or missing.
+        if (const std::string missing = fibrecell::test::reference_fea_missing(part, reference);
+            !missing.empty()) {
+            std::printf("%-12s skipped: %s\n", part, missing.c_str());
             continue;
         }
+        const std::string base = fibrecell::test::reference_fea_stem(part, reference);
         bench_part(part, read_volume_model(base + ".tet").mesh);
     }
     return 0;

@@ -1,5 +1,5 @@
 #pragma once
-// Job states and the one table of transitions between them (contracts.md names the states).
+// Job states and the one table of transitions between them (docs/contracts.md names the states).
 //
 //   planning     queued for a planning worker or being planned (progress stage "queued" while it
 //                waits). -> planned (plan_done), failed (plan_failed), aborted (abort).

@@ -2,7 +2,7 @@
 // The job store: one folder per job under <state_dir>/jobs/<id>/ (docs/jobs.md)
 //
 //   input/job.yaml, input/...   the job as submitted, its files inline
-//   plan/                       the plan directory (contracts.md)
+//   plan/                       the plan directory (docs/contracts.md)
 //   state.json                  the job's record, replaced atomically (temp, fsync, rename, fsync)
 //   journal.jsonl               the print's events, appended and fsynced one by one
 //

@@ -1,7 +1,7 @@
 #pragma once
-// fibrecelld's service: the socket API's methods (contracts.md) over the job store, the planning
-// workers, the cell's devices and the print runner (docs/service.md). Everything runs on the
-// caller's io_context except planning and printing, which have their own threads; a bad request
+// fibrecelld's service: the socket API's methods (docs/contracts.md) over the job store, the
+// planning workers, the cell's devices and the print runner (docs/service.md). Everything runs on
+// the caller's io_context except planning and printing, which have their own threads; a bad request
 // is refused and changes nothing, a failed job never takes the service or another job down.
 
 #include "daemon/api/api_config.hpp"

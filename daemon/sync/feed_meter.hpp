@@ -1,9 +1,9 @@
 #pragma once
-// Host metering of one path's feed (abb-notes §4.5, design 1): instead of one long G1 E move the
-// feed goes to the board in small pieces, each released when the robot is expected to be at most
-// `lead_s` of path behind the piece's end. The board then never holds more than about the lead,
-// so a pause stops the feed within the lead, and a stopped meter drops only unsent pieces.
-// Pure timing: the caller turns pieces into G-code and sends them.
+// Host metering of one path's feed (docs/sync-engine.md, "Why this design"): instead of one
+// long G1 E move the feed goes to the board in small pieces, each released when the robot is
+// expected to be at most `lead_s` of path behind the piece's end. The board then never holds
+// more than about the lead, so a pause stops the feed within the lead, and a stopped meter drops
+// only unsent pieces. Pure timing: the caller turns pieces into G-code and sends them.
 
 #include <chrono>
 #include <cstddef>

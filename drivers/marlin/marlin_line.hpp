@@ -28,7 +28,8 @@ std::string strip_comment(std::string_view gcode);
 // fit Marlin's line buffer or the command holds bytes Marlin would interpret (newline, '*').
 std::string frame_line(std::int64_t line, std::string_view command);
 
-// How long the firmware may legitimately take before its `ok` (marlin-notes 1.4.1, 1.7).
+// How long the firmware may legitimately take before its `ok` (docs/marlin-link.md, "When ok
+// comes").
 enum class CommandClass {
     normal,        // acknowledged when parsed and executed: M42, M280, T0, M104, ...
     motion,        // G0/G1: the ok waits for a free planner block

@@ -44,7 +44,8 @@ std::int64_t MarlinProtocol::enqueue(std::string_view command, Clock::time_point
     const std::int64_t line = next_line_;
     const bool reset = command_word(cmd) == "M110";
     // The reset always carries its own number (`N<k> M110 N<k>`) so that Marlin applies it on
-    // receipt, not when it executes behind queued lines (marlin-notes 1.2).
+    // receipt, not when it executes behind queued lines (docs/marlin-link.md, "Numbers and
+    // checksums").
     if (reset) cmd = "M110 N" + std::to_string(line);
     Entry e{line, frame_line(line, cmd) + "\n", classify(cmd), reset, {}, {}};
     lines_.push_back(std::move(e));

@@ -1,6 +1,7 @@
 #pragma once
-// The Marlin host protocol as a state machine with no I/O (marlin-notes 1.2-1.5, 6): line
-// numbering, a bounded send window, the go-back-N resend engine and the per-class ok deadlines.
+// The Marlin host protocol as a state machine with no I/O (docs/marlin-link.md, "The host
+// protocol, from the firmware's side" and "What the link does"): line numbering, a bounded send
+// window, the go-back-N resend engine and the per-class ok deadlines.
 // The owner feeds it received lines and clock ticks and gives it a function that writes bytes;
 // MarlinLink does that over a serial port, tests can do it by hand.
 

@@ -1,7 +1,8 @@
 #pragma once
-// Parsing of firmware->host lines (marlin-notes 1.4): ok (plain, ADVANCED_OK, M105 reply),
-// resend requests in Marlin's and older firmwares' spellings, busy keepalives, echo/Error lines,
-// temperature reports, the boot banner, host actions and M115 capabilities.
+// Parsing of firmware->host lines (docs/marlin-link.md, "What the firmware prints"): ok (plain,
+// ADVANCED_OK, M105 reply), resend requests in Marlin's and older firmwares' spellings, busy
+// keepalives, echo/Error lines, temperature reports, the boot banner, host actions and M115
+// capabilities.
 
 #include <cstdint>
 #include <optional>

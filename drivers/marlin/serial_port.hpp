@@ -1,7 +1,8 @@
 #pragma once
 // A serial port on its POSIX descriptor, configured with termios and driven by Boost.Asio:
 // raw 8N1, standard rates and 250000 (termios2/BOTHER), exclusive access, HUPCL chosen on
-// purpose. Modem-control calls are best-effort: pseudo-terminals reject them (marlin-notes 2.5).
+// purpose. Modem-control calls are best-effort: pseudo-terminals reject them (docs/marlin-link.md,
+// "Reset on open").
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>

@@ -1,10 +1,11 @@
 #pragma once
-// A GT2560 running Marlin, simulated behind a pseudo-terminal (openpty): the driver opens the
-// slave side exactly like /dev/ttyUSB0. It follows the firmware as marlin-notes 1.1-1.10 and 5.3
-// describe: reset on open and boot banner, line-number/checksum/resend rules, a 128-byte RX ring
-// that drops bytes when full, a 4-line command buffer, a 16-block planner whose moves take
-// (scaled) real time, two hotends and a bed with a first-order thermal model, blocking waits with
-// temperature and busy lines, pin/servo events, M112 kill and the emergency parser.
+// A GT2560 running Marlin, simulated behind a pseudo-terminal (openpty): the driver opens the slave
+// side exactly like /dev/ttyUSB0. It follows the firmware as docs/marlin-link.md describes ("The
+// host protocol, from the firmware's side", "Mock board"): reset on open and boot banner,
+// line-number/checksum/resend rules, a 128-byte RX ring that drops bytes when full, a 4-line
+// command buffer, a 16-block planner whose moves take (scaled) real time, two hotends and a bed
+// with a first-order thermal model, blocking waits with temperature and busy lines, pin/servo
+// events, M112 kill and the emergency parser.
 //
 // Faults are injected from a control channel (these methods; the mock-gt2560 tool maps its stdin
 // onto them), never in-band G-code. All times in the logs are simulated seconds.

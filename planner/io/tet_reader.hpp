@@ -1,6 +1,6 @@
 #pragma once
-// Reader for the reference FEA data set format (../data/reference-fea/README.md): a .tet mesh with
-// optional comma-separated stress and vertex selection files beside it.
+// Reader for the reference FEA data set format (docs/job-format.md, "Mesh and stress files"): a
+// .tet mesh with optional comma-separated stress and vertex selection files beside it.
 
 #include "planner/mesh/tet_mesh.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
-// preview/ of the plan directory (contracts.md): one SVG per layer, paths coloured by role over
-// the layer outline (and, for fibre layers, a per-triangle scalar map such as sigma), plus an
+// preview/ of the plan directory (docs/contracts.md): one SVG per layer, paths coloured by role
+// over the layer outline (and, for fibre layers, a per-triangle scalar map such as sigma), plus an
 // index.html that shows them all and works offline.
 
 #include "planner/layers/layer_mesh.hpp"

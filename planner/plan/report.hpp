@@ -1,5 +1,5 @@
 #pragma once
-// report.json of the plan directory (format fibrecell.report/1, keys in contracts.md).
+// report.json of the plan directory (format fibrecell.report/1, keys in docs/contracts.md).
 
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"

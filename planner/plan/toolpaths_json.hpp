@@ -1,6 +1,6 @@
 #pragma once
-// toolpaths.json of the plan directory (contracts.md): every layer, every path, in print order,
-// in the model frame [mm].
+// toolpaths.json of the plan directory (docs/contracts.md): every layer, every path, in print
+// order, in the bed frame (the part as placed on the bed) [mm].
 
 #include "planner/toolpaths/toolpath.hpp"
 

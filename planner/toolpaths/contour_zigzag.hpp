@@ -1,7 +1,7 @@
 #pragma once
-// The load-independent baseline fibre strategy `contour-zigzag` (product.md): boundary-conformal
-// fibre rings plus a zigzag fibre fill, as commercial fibre slicers do; paths shorter than the
-// cutter distance cannot be laid and are dropped.
+// The load-independent baseline fibre strategy `contour-zigzag` (docs/job-format.md, "What a
+// print is"): boundary-conformal fibre rings plus a zigzag fibre fill, as commercial fibre
+// slicers do; paths shorter than the cutter distance cannot be laid and are dropped.
 
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"

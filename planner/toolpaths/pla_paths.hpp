@@ -1,6 +1,6 @@
 #pragma once
 // Toolpaths of a PLA matrix layer: perimeters plus a zigzag infill whose direction turns from one
-// PLA layer to the next (product.md, "What a print is").
+// PLA layer to the next (docs/job-format.md, "What a print is").
 
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"

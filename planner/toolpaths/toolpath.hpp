@@ -1,6 +1,6 @@
 #pragma once
-// Toolpaths of a plan (contracts.md, toolpaths.json): per layer, the paths one head prints, in
-// print order, in the model frame [mm].
+// Toolpaths of a plan (docs/contracts.md, toolpaths.json): per layer, the paths one head prints,
+// in print order, in the bed frame (the part as placed on the bed) [mm].
 
 #include <Eigen/Core>
 

@@ -68,8 +68,8 @@ JointVector random_joints(std::mt19937& rng, const RobotModel& m, double limit_d
 
 }  // namespace
 
-// abb-notes 3.3: tool0 at zero joints, quaternion [w, x, y, z] = [0.7071, 0, 0.7071, 0] (tool0 z
-// along base +X, x along base -Z).
+// docs/kinematics.md, "Frames and conventions": tool0 at zero joints, quaternion [w, x, y, z] =
+// [0.7071, 0, 0.7071, 0] (tool0 z along base +X, x along base -Z).
 TEST(Irb1200Kinematics, ForwardAtZeroJoints) {
     const JointVector zero{};
     const Eigen::Isometry3d a = forward_kinematics(irb1200().geometry, zero);
@@ -89,8 +89,8 @@ TEST(Irb1200Kinematics, ForwardAtZeroJoints) {
     }
 }
 
-// Hand-computed from the URDF chain (abb-notes 3.1; 7/0.7: J1 z 399.1, J3 z 350, J4 z 42,
-// J5 x 351, J6 x 82, tool0 = Ry(+90 deg) of the flange):
+// Hand-computed from the URDF chain (docs/kinematics.md, "Sources"; 7/0.7: J1 z 399.1,
+// J3 z 350, J4 z 42, J5 x 351, J6 x 82, tool0 = Ry(+90 deg) of the flange):
 // * J2 = +90: Ry(90) maps z to +x and x to -z, so J3 sits at (350, 0, 399.1), J4 at
 //   (350 + 42, 0, 399.1), J5 at (392, 0, 399.1 - 351), the flange at (392, 0, 48.1 - 82) =
 //   (392, 0, -33.9); tool0 = Ry(90) Ry(90) = Ry(180): z down.
@@ -110,7 +110,8 @@ TEST(Irb1200Kinematics, ForwardAtHandComputedPoses) {
                 0, 1e-9);
 }
 
-// abb-notes 3.3: stretched arm at J3 = -atan2(c3, 42); reach to the wrist centre c2 + |(c3, a2)|.
+// docs/kinematics.md, "Sources": stretched arm at J3 = -atan2(c3, 42); reach to the wrist centre
+// c2 + |(c3, a2)|.
 TEST(Irb1200Kinematics, SanityNumbers) {
     const OpwParameters a = irb1200().geometry;
     const OpwParameters b = irb1200(Irb1200Variant::irb1200_5_90).geometry;

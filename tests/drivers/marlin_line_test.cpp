@@ -5,7 +5,8 @@
 
 using namespace fibrecell::drivers::marlin;
 
-// Checksums worked out in marlin-notes 1.2 (the last one also on 3dprinting.stackexchange).
+// Checksums worked out in docs/marlin-link.md, "Numbers and checksums" (the last one also on
+// 3dprinting.stackexchange).
 TEST(MarlinLine, FramesWithTheChecksumMarlinExpects) {
     EXPECT_EQ(frame_line(0, "M110 N0"), "N0 M110 N0*125");
     EXPECT_EQ(frame_line(1, "G28"), "N1 G28*18");

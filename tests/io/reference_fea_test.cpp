@@ -1,9 +1,10 @@
-// The two reference data sets (../shared/data/reference-fea): real Abaqus stress fields on real
-// meshes, read end to end.
+// The two reference data sets (the shared folder's data/reference-fea, not in the repository):
+// real Abaqus stress fields on real meshes, read end to end. Skipped when the data is missing.
 
 #include "planner/io/read_model.hpp"
 
 #include "io_test_support.hpp"
+#include "tests/support/shared_data.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,12 +18,8 @@ struct Reference {
     std::string name;
     std::size_t vertices;
     std::size_t tets;
-    Eigen::Vector3d min, max;  // [mm], as the README gives them (2 decimals)
+    Eigen::Vector3d min, max;  // [mm], as the data's README gives them (2 decimals)
 };
-
-std::string dir_of(const std::string& name) {
-    return std::string(FIBRECELL_SHARED_DIR) + "/data/reference-fea/" + name + "/" + name;
-}
 
 // The six components of the first stress line, parsed independently of the reader.
 StressTensor first_line_stress(const std::string& path) {
@@ -46,7 +43,8 @@ class ReferenceFea : public ::testing::TestWithParam<Reference> {};
 
 TEST_P(ReferenceFea, ReadsMeshStressAndSelection) {
     const Reference& r = GetParam();
-    const std::string base = dir_of(r.name);
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA(r.name);
+    const std::string base = fibrecell::test::reference_fea_stem(r.name);
     const VolumeModel m = read_volume_model(base + ".tet", base + "_stress.txt");
 
     EXPECT_EQ(m.mesh.vertex_count(), r.vertices);

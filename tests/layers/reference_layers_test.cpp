@@ -1,5 +1,6 @@
 // The reference parts (bunnyhead, YogaNew) placed on the bed and cut at every PLA layer: real
-// meshes whose outlines change with height, with islands and holes.
+// meshes whose outlines change with height, with islands and holes. The parts come from the shared
+// folder beside the repository; the tests skip when it is missing.
 
 #include "planner/io/read_model.hpp"
 #include "planner/layers/layer_schedule.hpp"
@@ -8,6 +9,7 @@
 #include "planner/layers/slice.hpp"
 
 #include "layer_checks.hpp"
+#include "tests/support/shared_data.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,8 +28,7 @@ const TetMesh& reference_mesh(const std::string& name) {
     static std::map<std::string, TetMesh> cache;
     auto it = cache.find(name);
     if (it == cache.end()) {
-        const std::string base =
-            std::string(FIBRECELL_SHARED_DIR) + "/data/reference-fea/" + name + "/" + name;
+        const std::string base = fibrecell::test::reference_fea_stem(name);
         it = cache.emplace(name, read_volume_model(base + ".tet").mesh).first;
     }
     return it->second;
@@ -42,6 +43,7 @@ double mesh_volume(const TetMesh& mesh) {
 }  // namespace
 
 TEST_P(ReferenceLayers, EveryPlaLayerIsACleanSectionAndTheLayersAddUpToTheVolume) {
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA(GetParam());
     const TetMesh& mesh = reference_mesh(GetParam());
     const TetMesh placed = place_mesh(mesh, placement_for(mesh, PlacementSpec{}));
     const double height = part_height(placed);
@@ -84,6 +86,7 @@ TEST_P(ReferenceLayers, EveryPlaLayerIsACleanSectionAndTheLayersAddUpToTheVolume
 }
 
 TEST_P(ReferenceLayers, PlanesExactlyThroughMeshVerticesGiveCleanSections) {
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA(GetParam());
     const TetMesh& mesh = reference_mesh(GetParam());
     const SliceIndex index = build_slice_index(mesh);
     // Heights of vertices spread over the part: the plane holds at least one mesh vertex.

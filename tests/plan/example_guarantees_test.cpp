@@ -8,6 +8,7 @@
 #include "planner/plan/layer_stage.hpp"
 #include "planner/toolpaths/path_order.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/shared_data.hpp"
 
 #include <gtest/gtest.h>
 
@@ -113,9 +114,9 @@ LayerStageStats check_guarantees(const std::string& job_file) {
 
 // A reference part with its own stress, boundary fibres along the `handle` selection, and a CCF
 // layer on every 3rd PLA layer (every layer would triple the time under the sanitizers and add
-// no new kind of section).
+// no new kind of section). The data is the shared folder's, beside the repository.
 JobSpec reference_job(const std::string& name) {
-    const std::string dir = std::string(FIBRECELL_SHARED_DIR) + "/data/reference-fea/" + name;
+    const std::string dir = (fibrecell::test::reference_fea_dir() / name).string();
     return parse_job("name: " + name + "\nmodel:\n  mesh: " + name + ".tet\n  stress: " + name +
                          "_stress.txt\nregions:\n  handle: {group: handle}\n"
                          "layers:\n  ccf_after_pla: {every: 3, first: 2}\n"
@@ -154,13 +155,16 @@ TEST(ExampleGuarantees, Loop) {
 }
 
 // The reference data: real meshes whose sections change with height, with islands and holes.
+// Skipped when the shared folder is not beside the repository.
 TEST(ReferenceGuarantees, Bunnyhead) {
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA("bunnyhead");
     const LayerStageStats s = check_guarantees(reference_job("bunnyhead"));
     EXPECT_GT(s.ccf_layers, 5);
     EXPECT_GT(s.fibre_paths, 0);
 }
 
 TEST(ReferenceGuarantees, YogaNew) {
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA("YogaNew");
     const LayerStageStats s = check_guarantees(reference_job("YogaNew"));
     EXPECT_GT(s.ccf_layers, 5);
     EXPECT_GT(s.fibre_paths, 0);

@@ -125,7 +125,7 @@ TEST_F(ServiceTest, ActionsThatDoNotFitTheJobsStateAreRefusedAndChangeNothing) {
     const std::int64_t planned = submit_bar(c, false);
     ASSERT_EQ(wait_for_state(c, planned, "planned").value("state", ""), "planned");
 
-    // What each state allows (contracts.md, docs/jobs.md); everything else is a conflict.
+    // What each state allows (docs/contracts.md, docs/jobs.md); everything else is a conflict.
     const std::map<std::string, std::set<std::string>> allowed = {
         {"planned", {"job.start", "job.abort", "job.remove"}},
         {"failed", {"job.remove"}},

@@ -1,5 +1,5 @@
 #pragma once
-// The client verbs that talk to fibrecelld over the socket API (contracts.md "Commands"):
+// The client verbs that talk to fibrecelld over the socket API (docs/contracts.md "Commands"):
 // submit, jobs, status, start, pause, resume, abort, remove, watch, estop. Each takes --socket
 // (default $FIBRECELL_SOCKET, then /run/fibrecelld/api.sock), --host/--port/--token for TCP and
 // --json; human output by default, one clear line and a non-zero exit code on error.

@@ -65,7 +65,7 @@ struct RobotMotionConfig {
 };
 
 struct RapidConfig {
-    int max_chunk_lines = 5000;   // per chunk module (abb-notes 2)
+    int max_chunk_lines = 5000;   // per chunk module (docs/robot-program.md, "The RAPID chunks")
     double trigger_lag_s = 0.05;  // TriggEquip EquipLag for events that drive the extruder
     bool confl = false;           // ConfL \On (check cf1/cf4/cf6 on linear moves) or \Off
 };

@@ -1,6 +1,6 @@
 #pragma once
-// ABB confdata [cf1, cf4, cf6, cfx] of a joint vector (abb-notes 3.5): the quadrants of axes 1, 4
-// and 6, and cfx, which of the eight arm configurations the joints are in.
+// ABB confdata [cf1, cf4, cf6, cfx] of a joint vector (docs/kinematics.md, "confdata"): the
+// quadrants of axes 1, 4 and 6, and cfx, which of the eight arm configurations the joints are in.
 
 #include "drivers/abb/kinematics/opw_kinematics.hpp"
 

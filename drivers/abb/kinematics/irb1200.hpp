@@ -1,6 +1,7 @@
 #pragma once
-// ABB IRB 1200 (abb-notes 3.1, 3.2): the OPW geometry of its two variants, the datasheet joint
-// ranges and speeds. The controller's axis 3 is the model's minus 90 deg (upper arm level at 0).
+// ABB IRB 1200 (docs/kinematics.md, "Parameters" and "Sources"): the OPW geometry of its two
+// variants, the datasheet joint ranges and speeds. The controller's axis 3 is the model's
+// minus 90 deg (upper arm level at 0).
 
 #include "drivers/abb/kinematics/opw_kinematics.hpp"
 

@@ -29,8 +29,9 @@ struct OpwParameters {
     std::array<int, 6> signs{1, 1, 1, 1, 1, 1};  // controller axis direction vs the model's
 };
 
-// A solution's branch, three bits in the order of ABB's cfx (abb-notes 3.5), so that for the
-// IRB 1200 cfx == branch. Ties (exactly on a singularity) count as front / positive.
+// A solution's branch, three bits in the order of ABB's cfx (docs/kinematics.md, "Inverse
+// kinematics and branches"), so that for the IRB 1200 cfx == branch. Ties (exactly on a
+// singularity) count as front / positive.
 inline constexpr int branch_count = 8;
 inline constexpr int branch_behind_axis1 = 4;      // wrist centre behind axis 1 (shoulder flip)
 inline constexpr int branch_behind_lower_arm = 2;  // wrist centre behind the lower arm (elbow down)

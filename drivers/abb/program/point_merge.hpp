@@ -1,6 +1,7 @@
 #pragma once
 // Thinning a toolpath polyline for the controller: dense, nearly collinear points cost program
-// lines and overload the path planner (abb-notes 5.4, event 50078) without changing the path.
+// lines and overload the path planner (event 50078; docs/robot-program.md, "Merging") without
+// changing the path.
 
 #include <Eigen/Core>
 

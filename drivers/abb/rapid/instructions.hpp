@@ -1,7 +1,8 @@
 #pragma once
 // The built-in RAPID instructions the reader knows: their positional parameters (with the type the
 // validator checks where a declared name or an aggregate is passed) and their optional arguments
-// and switches. Syntax from the RAPID reference as summarised in abb-notes 4.2.
+// and switches. Syntax from the RAPID reference as summarised in docs/rapid-subset.md
+// ("Statements", "Position events").
 
 #include <cstddef>
 #include <span>

@@ -8,7 +8,8 @@
 namespace fibrecell::drivers::abb::rapid {
 namespace {
 
-// BossyMr/intellij-rapid RapidLexer.KEYWORDS, as listed in abb-notes 5.3 (lower case, sorted).
+// BossyMr/intellij-rapid RapidLexer.KEYWORDS, as listed in docs/rapid-subset.md ("Lexical
+// elements"); lower case, sorted.
 constexpr std::string_view reserved_words[] = {
     "alias",     "and",     "backward", "case",     "connect",   "const", "default",   "div",
     "do",        "else",    "elseif",   "endfor",   "endfunc",   "endif", "endmodule", "endproc",

@@ -1,6 +1,7 @@
 #pragma once
-// RAPID names: identifiers are case-insensitive (abb-notes 5.3), so every comparison goes through
-// fold(); the reserved words and built-in function names that no declaration may take.
+// RAPID names: identifiers are case-insensitive (docs/rapid-subset.md, "Lexical elements"), so
+// every comparison goes through fold(); the reserved words and built-in function names that no
+// declaration may take.
 
 #include <cstddef>
 #include <string>
@@ -20,7 +21,7 @@ bool same_name(std::string_view a, std::string_view b);
 // Letter first, then letters, digits and '_' (the length limit is a separate rule).
 bool is_identifier(std::string_view text);
 
-// The reserved words of abb-notes 5.3 (AND ... XOR), case-insensitive.
+// The reserved words of docs/rapid-subset.md (AND ... XOR), case-insensitive.
 bool is_reserved_word(std::string_view name);
 
 // Built-in functions the reader knows by name (Offs, NumToStr, DInput, CRobT, ...). A call to one

@@ -1,7 +1,8 @@
 #pragma once
-// Data the controller predefines (abb-notes 5.2): tool0, wobj0, load0, the speeds v5 ... v7000 and
-// vmax, the zones fine, z0 ... z200, and a few constants (pi, diskhome). A module may use them
-// without declaring them and must not redeclare them.
+// Data the controller predefines (docs/rapid-subset.md, "Predefined data", which also explains
+// the [S]/[K] marks): tool0, wobj0, load0, the speeds v5 ... v7000 and vmax, the zones fine,
+// z0 ... z200, and a few constants (pi, diskhome). A module may use them without declaring them
+// and must not redeclare them.
 
 #include <string_view>
 

@@ -235,7 +235,8 @@ class ChunkWriter {
             t += ",5000,1000];\n";
         }
         for (const auto& [z, name] : names_.zones) {
-            // The predefined zones' proportions (abb-notes 5.2): tcp, 1.5x ori and eax, 0.15x deg.
+            // The predefined zones' proportions (docs/rapid-subset.md, "Predefined data"): tcp,
+            // 1.5x ori and eax, 0.15x deg.
             t += "  LOCAL CONST zonedata " + name + " := [FALSE,";
             for (const double k : {1.0, 1.5, 1.5, 0.15, 1.5, 0.15}) {
                 append_number(t, std::round(z * k * 1e4) / 1e4);

@@ -1,7 +1,7 @@
 #pragma once
-// Typed views of the RAPID motion data (abb-notes 5.2) for code that computes with them: the
-// kinematics checks, the simulated controller, the writer's tests. Quaternions are written
-// [q1,q2,q3,q4] = (w,x,y,z) in RAPID and are kept as read (not normalised): the validator
+// Typed views of the RAPID motion data (docs/rapid-subset.md, "Records") for code that computes
+// with them: the kinematics checks, the simulated controller, the writer's tests. Quaternions are
+// written [q1,q2,q3,q4] = (w,x,y,z) in RAPID and are kept as read (not normalised): the validator
 // checks the norm, the consumer decides.
 
 #include <array>

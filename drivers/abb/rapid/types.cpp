@@ -5,7 +5,7 @@
 namespace fibrecell::drivers::abb::rapid {
 namespace {
 
-// Component order as in the RAPID reference and abb-notes 5.2.
+// Component order as in the RAPID reference and docs/rapid-subset.md ("Records").
 constexpr Field pos_fields[] = {{"x", "num"}, {"y", "num"}, {"z", "num"}};
 constexpr Field orient_fields[] = {{"q1", "num"}, {"q2", "num"}, {"q3", "num"}, {"q4", "num"}};
 constexpr Field pose_fields[] = {{"trans", "pos"}, {"rot", "orient"}};

@@ -1,7 +1,7 @@
 #pragma once
-// The RAPID data types the reader knows: atomic types, the record types of abb-notes 5.2 with
-// their components in declaration order, and the opaque types (signals, triggdata, ...) that hold
-// no value the program can write as a literal.
+// The RAPID data types the reader knows: atomic types, the record types (docs/rapid-subset.md,
+// "Records") with their components in declaration order, and the opaque types (signals,
+// triggdata, ...) that hold no value the program can write as a literal.
 
 #include <optional>
 #include <span>

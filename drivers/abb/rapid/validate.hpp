@@ -21,7 +21,8 @@ struct ValidateOptions {
     // Labels diagnostics; when set (and check_module_name), its stem must equal the module name.
     std::string file_name;
     bool check_module_name = true;
-    // Chunk modules must stay below this many lines (abb-notes 2: RoboDK's default is 5000).
+    // Chunk modules must stay below this many lines (RoboDK's default, docs/robot-program.md,
+    // "The RAPID chunks").
     std::size_t max_lines = 5000;
     // Signals configured in the controller's I/O configuration (EIO), usable without declaration.
     std::vector<std::string> known_signals;

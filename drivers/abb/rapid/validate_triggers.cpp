@@ -1,6 +1,7 @@
 // Position events: every triggdata a TriggL/TriggJ fires must have been set up by TriggIO,
-// TriggEquip, TriggInt or TriggSpeed earlier in the same routine (abb-notes 5.4). "Earlier" is
-// source order, which is execution order for the straight-line chunks the generator emits.
+// TriggEquip, TriggInt or TriggSpeed earlier in the same routine (docs/rapid-subset.md, "Position
+// events"). "Earlier" is source order, which is execution order for the straight-line chunks the
+// generator emits.
 
 #include <set>
 

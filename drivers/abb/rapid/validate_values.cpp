@@ -1,5 +1,6 @@
-// Aggregate shapes against their data type, and the value rules of abb-notes 5.4 and contracts.md:
-// normalised quaternions printed with enough decimals, v_tcp > 0, tool mass > 0.
+// Aggregate shapes against their data type, and the value rules of docs/rapid-subset.md
+// ("Validator rules") and docs/contracts.md ("The robot side"): normalised quaternions printed
+// with enough decimals, v_tcp > 0, tool mass > 0.
 
 #include <charconv>
 #include <cmath>
