@@ -202,6 +202,35 @@ TEST_F(MarlinProtocolTest, ACorruptedLineWithOthersInFlightGoesBackOnceAndTheirR
     EXPECT_THAT(failures_, IsEmpty());
 }
 
+// Marlin 1.1.9's flush_and_request_resend() empties its RX buffer first: lines in flight behind
+// the bad one that were already in it vanish and draw no request of their own. The resent line
+// corrupted again is then a new request, not one of those that never came.
+TEST_F(MarlinProtocolTest, AResentLineCorruptedAgainIsResentAfterTheFirmwareFlushedTheOthers) {
+    ProtocolSettings s;
+    s.window_lines = 3;
+    s.resend_ok = ResendOk::always;
+    start(s, 9);
+    send("G1 E0.5 F300");
+    send("G1 E0.6 F300");
+    send("G1 E0.7 F300");
+    const std::vector<std::string> all = {"N10 G1 E0.5 F300*2\n", "N11 G1 E0.6 F300*0\n",
+                                          "N12 G1 E0.7 F300*2\n"};
+    EXPECT_EQ(take_written(), all);
+    reply("Error:checksum mismatch, Last Line: 9", 0.1);  // N11 and N12 flushed with it
+    reply("Resend: 10", 0.1);
+    reply("ok", 0.1);
+    EXPECT_EQ(take_written(), all);
+    reply("Error:checksum mismatch, Last Line: 9", 0.2);  // the copy of N10, corrupted too
+    reply("Resend: 10", 0.2);
+    reply("ok", 0.2);
+    EXPECT_EQ(take_written(), all);
+    reply("ok", 0.3);
+    reply("ok", 0.3);
+    reply("ok", 0.3);
+    EXPECT_THAT(acked_, ElementsAre(10, 11, 12));
+    EXPECT_THAT(failures_, IsEmpty());
+}
+
 TEST_F(MarlinProtocolTest, BusyLinesKeepALongCommandAliveAndSilenceAfterThemProbes) {
     ProtocolSettings s;
     s.long_timeout = Seconds(2.0);
