@@ -8,6 +8,7 @@
 #include "drivers/abb/kinematics/confdata.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -535,9 +536,8 @@ TEST(RapidWriter, AStretchLongerThanAChunkIsAnError) {
 TEST(RapidWriter, WritesTheDirectoryAtomically) {
     namespace fs = std::filesystem;
     const RobotCellConfig cell;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("fibrecell-rapid-writer-test-" + std::to_string(::getpid())) / "rapid";
-    fs::remove_all(dir.parent_path());
+    const fibrecell::test::TempDir tmp("rapid-writer");
+    const fs::path dir = tmp / "rapid";
     const Generated many = generate(cell, 45);
     write_rapid_directory(many.output, dir);
     std::size_t files = 0;
@@ -565,7 +565,6 @@ TEST(RapidWriter, WritesTheDirectoryAtomically) {
     files = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.parent_path())) ++files;
     EXPECT_EQ(files, 1u);
-    fs::remove_all(dir.parent_path());
 }
 
 TEST(RapidWriter, WritesConfLAndTheSignalNamesFromTheConfig) {

@@ -23,7 +23,6 @@ namespace {
 class JobStoreTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = test::fresh_test_dir("fibrecell-jobstore");
         // A tiny stressed box: submission checks the job file, nothing is planned.
         const auto mesh = planner::structured_tet_mesh({.size = {10, 10, 2}, .cells = {1, 1, 1}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(),
@@ -32,7 +31,6 @@ class JobStoreTest : public ::testing::Test {
         input_.job_yaml = "name: box\nmodel:\n  mesh: box.vtk\n";
         input_.files = {{"box.vtk", read_file(dir_ / "box.vtk")}};
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     JobStoreOptions options() const { return {.state_dir = dir_ / "state"}; }
     fs::path state_file(std::int64_t id) const {
@@ -62,7 +60,7 @@ class JobStoreTest : public ::testing::Test {
         ASSERT_EQ(store.get(id).state, target);
     }
 
-    fs::path dir_;
+    test::TempDir dir_{"jobstore"};
     JobInput input_;
 };
 
