@@ -413,7 +413,8 @@ TEST(SimCell, DroppedModbusLinkIsAFaultOfTheServiceLink) {
     // Refused for a while (a reconnect attempt is turned away), then the link comes back by
     // itself.
     const auto refused = down.stats.connect_failures;
-    ASSERT_TRUE(eventually([&] { return r.io.snapshot().stats.connect_failures > refused; }));
+    ASSERT_TRUE(eventually([&] { return r.io.snapshot().stats.connect_failures > refused; }))
+        << r.io.snapshot().last_error << " failures " << refused;
     EXPECT_EQ(r.io.state(), abb::RobotIoState::fault);
     EXPECT_TRUE(r.io.wait_until_up(10s)) << r.io.snapshot().last_error;
 }
