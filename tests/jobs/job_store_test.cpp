@@ -145,7 +145,7 @@ TEST_F(JobStoreTest, StoreWalksEveryUserActionFromEveryState) {
     // lands where the table says and is on disk; a refused one changes nothing on disk either.
     JobStoreOptions o = options();
     // 50 stores and ~250 durable writes: on tmpfs, where fsync costs nothing, when there is one.
-    if (fs::is_directory("/dev/shm")) o.state_dir = fs::path("/dev/shm") / dir_.filename();
+    if (fs::is_directory("/dev/shm")) o.state_dir = fs::path("/dev/shm") / dir_.path().filename();
     o.max_queued = 1000;
     o.keep_completed = 1000;
     const auto walk_state_file = [&](std::int64_t id) {
