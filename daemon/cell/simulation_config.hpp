@@ -14,6 +14,7 @@
 
 #include "config/yaml_section.hpp"
 
+#include <cstddef>
 #include <string>
 
 namespace fibrecell::daemon {
@@ -24,6 +25,9 @@ struct SimulationConfig {
     double residency_s = 2;
     std::string main_module;
     bool external_devices = false;  // devices: external
+    // Not in the YAML: trajectory samples the in-process simulated robot keeps until taken. The
+    // service never takes them, so it keeps few; a test that measures along the path keeps all.
+    std::size_t trajectory_samples = 10'000;
 };
 
 // Throws config::ConfigError naming the key ("simulation.time_scale").

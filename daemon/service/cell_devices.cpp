@@ -36,7 +36,7 @@ std::unique_ptr<drivers::sim::SimCell> make_sim_cell(const CellConfig& cell) {
     o.io_map = cell.robot_io.map;
     o.signals = cell.robot.signals;
     o.main_module = resolve_main_module(cell.simulation.main_module);
-    o.motion.max_samples = 10'000;  // the trajectory is not read in the service: kept small
+    o.motion.max_samples = cell.simulation.trajectory_samples;
     o.on_task_log = [](const drivers::sim::TaskLogEntry& e) { spdlog::info("simcell.task {}", e.text); };
     return std::make_unique<drivers::sim::SimCell>(o);
 }

@@ -1,6 +1,7 @@
 #include "drivers/marlin/marlin_protocol.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace fibrecell::drivers::marlin {
 
@@ -131,6 +132,9 @@ void MarlinProtocol::on_line(std::string_view raw, Clock::time_point now) {
         case ReplyKind::error:
             if (r.fatal) fail(LinkFailure::firmware_halted, "firmware: " + r.text);
             break;
+        case ReplyKind::line_error:
+            request_is_new_ = r.text.find("Line Number is not") == std::string::npos;
+            break;
         case ReplyKind::busy:
             if (in_flight() > 0) entry(first_unacked_).deadline_base = now;
             break;
@@ -169,6 +173,7 @@ void MarlinProtocol::handle_ok(const Reply& r, Clock::time_point now) {
 
 void MarlinProtocol::handle_resend(std::int64_t line, Clock::time_point now) {
     ++stats_.resend_requests;
+    const bool is_new = std::exchange(request_is_new_, false);
     if (resend_ok_known_) {
         if (*resend_ok_known_) ++resend_oks_pending_;
     } else {
@@ -194,7 +199,7 @@ void MarlinProtocol::handle_resend(std::int64_t line, Clock::time_point now) {
         pump(now);
         return;
     }
-    if (dedupe_budget_ > 0 && line == dedupe_line_) {
+    if (dedupe_budget_ > 0 && line == dedupe_line_ && !is_new) {
         --dedupe_budget_;
         ++stats_.resends_ignored;
         pump(now);

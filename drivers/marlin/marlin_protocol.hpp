@@ -146,6 +146,10 @@ class MarlinProtocol {
     Clock::time_point resend_ok_deadline_{};
     std::int64_t dedupe_line_ = -1;           // requests for this line caused by in-flight lines
     int dedupe_budget_ = 0;
+    // The line error before the next request was not a sequence error (a checksum error, a
+    // missing checksum): the line the firmware wants arrived damaged, so the request is new,
+    // never one that lines in flight caused (Marlin 1.1.9 may have flushed those unanswered).
+    bool request_is_new_ = false;
     std::int64_t last_request_ = -1;
     int same_request_count_ = 0;
 

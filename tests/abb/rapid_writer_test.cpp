@@ -8,6 +8,7 @@
 #include "drivers/abb/kinematics/confdata.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,6 +8,8 @@
 #include "drivers/abb/modbus/robot_io_server.hpp"
 
 #include "config/yaml_section.hpp"
+#include "tests/support/eventually.hpp"
+#include "tests/support/log_lines.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,6 +23,8 @@ using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
+using fibrecell::test::eventually;
+using fibrecell::test::LogLines;
 
 namespace {
 
@@ -59,16 +63,6 @@ RobotIoServerOptions fast_server() {
     RobotIoServerOptions o;
     o.robot_heartbeat_period = 20ms;
     return o;
-}
-
-template <class P>
-bool eventually(P pred, std::chrono::milliseconds timeout = 3000ms) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-        if (pred()) return true;
-        std::this_thread::sleep_for(1ms);
-    }
-    return pred();
 }
 
 // Records the link's state changes and events.
@@ -236,7 +230,7 @@ TEST(RobotIoLink, EventCounterChangesArriveInOrderWithTimestamps) {
         server.set_barrier_number(n / 10);
         server.set_event_number(n);
         // Longer than a poll, so that every value is seen (the sync engine catches up otherwise).
-        ASSERT_TRUE(eventually([&] { return link.snapshot().event_counter == n; }, 1000ms));
+        ASSERT_TRUE(eventually([&] { return link.snapshot().event_counter == n; }));
     }
     const auto events = rec.event_log();
     ASSERT_FALSE(events.empty());
@@ -343,6 +337,7 @@ TEST(RobotIoLink, ServiceHeartbeatTogglesAtItsPeriod) {
 }
 
 TEST(RobotIoLink, ServiceHeartbeatStopsWhenTheServiceLoopStalls) {
+    const LogLines log;  // before the link's thread logs
     RobotIoServer server(RobotIoMap{}, fast_server());
     RobotIoConfig c = fast_config(server);
     c.service_watchdog = 100ms;
@@ -361,9 +356,13 @@ TEST(RobotIoLink, ServiceHeartbeatStopsWhenTheServiceLoopStalls) {
         [&](const ServiceCommands& s) { return s.heartbeat_edges >= before + 3; }, 1000ms));
     feeding = false;
     loop.join();
-    std::this_thread::sleep_for(150ms);  // the watchdog runs out
+    // The watchdog runs out: the link says so when it skips the toggle.
+    ASSERT_TRUE(log.wait_for("robot_io.service_stalled"));
     const auto stalled = server.commands().heartbeat_edges;
-    std::this_thread::sleep_for(100ms);
+    // Five heartbeat periods of the link's own polling later (a poll every 1 ms at the most
+    // often), it still has not toggled.
+    const auto polls = link.snapshot().stats.polls;
+    ASSERT_TRUE(eventually([&] { return link.snapshot().stats.polls >= polls + 100; }));
     EXPECT_EQ(server.commands().heartbeat_edges, stalled);
     link.service_alive();
     EXPECT_TRUE(server.wait_for_commands(

@@ -22,9 +22,11 @@
 #include "drivers/abb/rws/rws_client.hpp"
 #include "drivers/abb/rws/rws_server.hpp"
 #include "drivers/abb/rws/url.hpp"
+#include "tests/support/eventually.hpp"
 
 using namespace fibrecell::drivers::abb::rws;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -389,7 +391,7 @@ TEST_F(RwsTest, ReopensAKeepAliveConnectionTheServerClosed) {
     config.idle_timeout = 50ms;
     start(config);
     client().controller_state();
-    std::this_thread::sleep_for(150ms);  // the server drops the idle connection
+    ASSERT_TRUE(eventually([&] { return server_->stats().idle_closes == 1; }));  // dropped idle
     EXPECT_EQ(client().controller_state(), ControllerState::motoron);
     EXPECT_EQ(client().stats().connects, 2u);
 }

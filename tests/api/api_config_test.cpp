@@ -1,5 +1,6 @@
 // The `api:` section: defaults, every key, and an error naming the key for each bad value.
 #include "daemon/api/api_config.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -120,9 +121,8 @@ TEST(ApiConfig, TcpNeedsAToken) {
 }
 
 TEST(ApiConfig, TokenFileIsReadAndTrimmed) {
-    const auto path =
-        std::filesystem::temp_directory_path() / ("api-token-" + std::to_string(::getpid()));
-    std::ofstream(path) << "  " << kToken << "  \n# comment line\n";
+    const fibrecell::test::TempDir dir("api-token");
+    const auto path = dir.write("token", std::string("  ") + kToken + "  \n# comment line\n");
     const ApiConfig c = load("api: {tcp: {enabled: true, token_file: " + path.string() + "}}\n");
     EXPECT_EQ(c.tcp.token, kToken);
     std::filesystem::remove(path);

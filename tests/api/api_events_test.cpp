@@ -3,6 +3,7 @@
 // several subscribers, and a slow subscriber cut off without holding anyone else up.
 #include "daemon/api/api_client.hpp"
 #include "daemon/api/api_server.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,11 +18,6 @@ using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-std::filesystem::path temp_dir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "api-ev-XXXXXX").string();
-    return mkdtemp(tmpl.data());
-}
 
 struct Received {
     ApiNotification n;
@@ -38,7 +34,6 @@ std::vector<Received> collect(ApiClient& c, std::chrono::milliseconds quiet = 30
 class ApiEventsTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = temp_dir();
         config_.socket_path = (dir_ / "api.sock").string();
     }
     void TearDown() override {
@@ -46,7 +41,6 @@ class ApiEventsTest : public ::testing::Test {
         io_.stop();
         if (io_thread_.joinable()) io_thread_.join();
         server_.reset();
-        std::filesystem::remove_all(dir_);
     }
     void start() {
         server_ = std::make_unique<ApiServer>(io_, config_);
@@ -68,7 +62,7 @@ class ApiEventsTest : public ::testing::Test {
             {job, notify::job_progress, {{"job", job}, {"value", value}}, Delivery::latest});
     }
 
-    std::filesystem::path dir_;
+    fibrecell::test::TempDir dir_{"api-ev"};
     ApiConfig config_;
     boost::asio::io_context io_;
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =

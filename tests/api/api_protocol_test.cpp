@@ -4,6 +4,7 @@
 #include "daemon/api/api_server.hpp"
 #include "daemon/api/json_rpc.hpp"
 #include "daemon/api/params.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,15 +21,9 @@ using namespace std::chrono_literals;
 
 namespace {
 
-std::filesystem::path temp_dir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "api-proto-XXXXXX").string();
-    return mkdtemp(tmpl.data());
-}
-
 class ApiProtocolTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = temp_dir();
         config_.socket_path = (dir_ / "api.sock").string();
     }
     void TearDown() override {
@@ -37,7 +32,6 @@ class ApiProtocolTest : public ::testing::Test {
         if (io_thread_.joinable()) io_thread_.join();
         server_.reset();
         for (auto& t : workers_) t.join();
-        std::filesystem::remove_all(dir_);
     }
     void start() {
         server_ = std::make_unique<ApiServer>(io_, config_);
@@ -90,7 +84,7 @@ class ApiProtocolTest : public ::testing::Test {
         return *m;
     }
 
-    std::filesystem::path dir_;
+    fibrecell::test::TempDir dir_{"api-proto"};
     ApiConfig config_;
     boost::asio::io_context io_;
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =

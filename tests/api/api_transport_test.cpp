@@ -2,6 +2,7 @@
 // sockets), the client's one-line errors, TCP with its token, and the client limit.
 #include "daemon/api/api_client.hpp"
 #include "daemon/api/api_server.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,11 +28,6 @@ namespace {
 
 const std::string kToken = "s3cret-token-0123456789";
 
-std::filesystem::path temp_dir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "api-tr-XXXXXX").string();
-    return mkdtemp(tmpl.data());
-}
-
 std::string client_error(const ApiEndpoint& endpoint) {
     try {
         ApiClient::connect(endpoint);
@@ -44,7 +40,6 @@ std::string client_error(const ApiEndpoint& endpoint) {
 class ApiTransportTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = temp_dir();
         config_.socket_path = (dir_ / "api.sock").string();
         config_.tcp.token = kToken;
         config_.tcp.port = 0;  // ephemeral
@@ -52,7 +47,6 @@ class ApiTransportTest : public ::testing::Test {
     void TearDown() override {
         stop_io();
         server_.reset();
-        std::filesystem::remove_all(dir_);
     }
     void start(bool run_io = true) {
         server_ = std::make_unique<ApiServer>(io_, config_);
@@ -72,7 +66,7 @@ class ApiTransportTest : public ::testing::Test {
         return {.host = "127.0.0.1", .port = server_->tcp_port(), .token = token};
     }
 
-    std::filesystem::path dir_;
+    fibrecell::test::TempDir dir_{"api-tr"};
     ApiConfig config_;
     boost::asio::io_context io_;
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
@@ -188,7 +182,7 @@ TEST_F(ApiTransportTest, ClientSaysPermissionDenied) {
     // kernel decides before any accept.
     const bool root = ::geteuid() == 0;
     config_.socket_mode = root ? 0600 : 0;
-    std::filesystem::permissions(dir_, std::filesystem::perms(0711));  // searchable for nobody
+    std::filesystem::permissions(dir_.path(), std::filesystem::perms(0711));  // searchable for nobody
     start(false);
     const std::string expected = "permission denied on " + config_.socket_path;
     if (!root) {

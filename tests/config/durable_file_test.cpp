@@ -3,12 +3,11 @@
 // one), missing folders made, and appends one line at a time.
 #include "config/durable_file.hpp"
 
+#include "tests/support/temp_dir.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,11 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 std::size_t entries(const fs::path& dir) {
     std::size_t n = 0;
     for ([[maybe_unused]] const auto& e : fs::recursive_directory_iterator(dir)) ++n;
@@ -31,12 +25,8 @@ std::size_t entries(const fs::path& dir) {
 
 class DurableFileTest : public ::testing::Test {
   protected:
-    void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "durable-XXXXXX").string();
-        dir_ = ::mkdtemp(tmpl.data());
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
+    fibrecell::test::TempDir tmp_{"durable"};
+    const fs::path dir_ = tmp_.path();
 };
 
 }  // namespace
@@ -44,7 +34,7 @@ class DurableFileTest : public ::testing::Test {
 TEST_F(DurableFileTest, ReplacesAFileWholeAndLeavesNoTemporary) {
     write_file_durably(dir_ / "state.json", "one");
     write_file_durably(dir_ / "state.json", "two, longer");
-    EXPECT_EQ(slurp(dir_ / "state.json"), "two, longer");
+    EXPECT_EQ(fibrecell::test::read_file(dir_ / "state.json"), "two, longer");
     EXPECT_EQ(entries(dir_), 1u);
     EXPECT_THROW(write_file_durably(dir_ / "missing" / "x", "y"), std::system_error);
 }
@@ -56,9 +46,9 @@ TEST_F(DurableFileTest, ManyFilesCommittedTogetherInFoldersItMakes) {
     plan.write("preview/a/b/layer_0001.svg", "<svg/>");
     plan.write("toolpaths.json", "{\"v\": 2}\n");  // again: replaced
     plan.commit();
-    EXPECT_EQ(slurp(dir_ / "plan" / "toolpaths.json"), "{\"v\": 2}\n");
-    EXPECT_EQ(slurp(dir_ / "plan" / "rapid" / "FcChunk0001.mod"), "MODULE FcChunk0001\n");
-    EXPECT_EQ(slurp(dir_ / "plan" / "preview" / "a" / "b" / "layer_0001.svg"), "<svg/>");
+    EXPECT_EQ(fibrecell::test::read_file(dir_ / "plan" / "toolpaths.json"), "{\"v\": 2}\n");
+    EXPECT_EQ(fibrecell::test::read_file(dir_ / "plan" / "rapid" / "FcChunk0001.mod"), "MODULE FcChunk0001\n");
+    EXPECT_EQ(fibrecell::test::read_file(dir_ / "plan" / "preview" / "a" / "b" / "layer_0001.svg"), "<svg/>");
     for (const auto& e : fs::recursive_directory_iterator(dir_))
         EXPECT_FALSE(is_leftover_temp_file(e.path())) << e.path();
     EXPECT_EQ(entries(dir_ / "plan"), 7u);  // 3 files, 4 folders
@@ -73,7 +63,7 @@ TEST_F(DurableFileTest, WritersOfOneFileNeverShareATemporary) {
             for (int i = 0; i < 50; ++i) write_file_durably(dir_ / "shared", *text);
         });
     for (int i = 0; i < 50; ++i) {
-        const std::string now = slurp(dir_ / "shared");
+        const std::string now = fibrecell::test::read_file(dir_ / "shared");
         if (!now.empty()) {
             EXPECT_TRUE(now == a || now == b) << now.size() << " bytes";
         }
@@ -95,5 +85,5 @@ TEST_F(DurableFileTest, AppendsWholeLines) {
     }
     DurableAppender again(dir_ / "journal.jsonl");
     again.append("{\"seq\":3}");
-    EXPECT_EQ(slurp(dir_ / "journal.jsonl"), "{\"seq\":1}\n{\"seq\":2}\n{\"seq\":3}\n");
+    EXPECT_EQ(fibrecell::test::read_file(dir_ / "journal.jsonl"), "{\"seq\":1}\n{\"seq\":2}\n{\"seq\":3}\n");
 }

@@ -2,9 +2,11 @@
 #include "drivers/marlin/marlin_link.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 
+#include "tests/support/eventually.hpp"
+#include "tests/support/temp_dir.hpp"
+
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <thread>
@@ -12,24 +14,10 @@
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::marlin;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
+using fibrecell::test::TempDir;
 
 namespace {
-
-std::filesystem::path temp_dir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "marlin-link-XXXXXX").string();
-    return mkdtemp(tmpl.data());
-}
-
-// Generous real-time bounds: waits end as soon as the condition holds.
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds timeout = 5000ms) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-        if (pred()) return true;
-        std::this_thread::sleep_for(1ms);
-    }
-    return pred();
-}
 
 CommandOutcome finish(std::future<CommandOutcome> f, std::chrono::seconds limit = 30s) {
     if (f.wait_for(limit) != std::future_status::ready) return {LinkFailure::ack_timeout, "test: no result"};
@@ -39,7 +27,6 @@ CommandOutcome finish(std::future<CommandOutcome> f, std::chrono::seconds limit 
 class MarlinLinkTest : public ::testing::Test {
   protected:
     void start(sim::MockGt2560Options mo = {}, MarlinLinkConfig lc = {}) {
-        dir_ = temp_dir();
         mo.link_path = (dir_ / "ttyGT2560").string();
         if (mo.bootloader_s == 1.0) mo.bootloader_s = 0.01 * mo.time_scale;  // 10 ms real
         mock_ = std::make_unique<sim::MockGt2560>(mo);
@@ -52,7 +39,6 @@ class MarlinLinkTest : public ::testing::Test {
     void TearDown() override {
         if (link_.state() == DeviceState::active) link_.deactivate();
         mock_.reset();
-        if (!dir_.empty()) std::filesystem::remove_all(dir_);
     }
     // The commands the mock executed since the handshake, in order.
     std::vector<std::string> executed_job() const {
@@ -68,7 +54,7 @@ class MarlinLinkTest : public ::testing::Test {
         job_start_ = mock_->executed_count();
     }
 
-    std::filesystem::path dir_;
+    TempDir dir_{"marlin-link"};  // first: the port's link in it outlives the mock
     std::unique_ptr<sim::MockGt2560> mock_;
     MarlinLink link_;
     MarlinLinkConfig config_;

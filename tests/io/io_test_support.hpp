@@ -4,6 +4,7 @@
 
 #include "planner/input_error.hpp"
 #include "planner/mesh/tet_mesh.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,33 +32,7 @@ inline std::string read_text(const std::string& path) {
 }
 
 // A fresh directory removed with its contents at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern =
-            (std::filesystem::temp_directory_path() / "fibrecell-io-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    // Writes `content` to `name` in the directory and returns the file's path.
-    std::string write(const std::string& name, std::string_view content) const {
-        const std::string file = (path_ / name).string();
-        std::ofstream out(file, std::ios::binary);
-        out.write(content.data(), static_cast<std::streamsize>(content.size()));
-        return file;
-    }
-    std::string path(const std::string& name) const { return (path_ / name).string(); }
-
-  private:
-    std::filesystem::path path_;
-};
+using TempDir = fibrecell::test::TempDir;
 
 // `text` with the first occurrence of `from` replaced by `to`; fails the test if absent.
 inline std::string replaced(std::string text, std::string_view from, std::string_view to) {

@@ -35,7 +35,7 @@ class TetReader : public ::testing::Test {
                  const std::string& bad_file, std::initializer_list<std::string_view> parts) {
         const std::string message =
             io_test::rejection([&] { read(tet, stress, selection); }, parts);
-        EXPECT_NE(message.find(dir_.path(bad_file) + ":"), std::string::npos) << message;
+        EXPECT_NE(message.find(dir_.path(bad_file).string() + ":"), std::string::npos) << message;
     }
     io_test::TempDir dir_;
 };

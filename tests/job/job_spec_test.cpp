@@ -1,4 +1,5 @@
 #include "planner/job/job_spec.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include "config/yaml_section.hpp"
 
@@ -20,15 +21,9 @@ namespace fs = std::filesystem;
 class JobSpecTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("fibrecell-job-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-             "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
         std::ofstream(dir_ / "part.msh") << "";
         std::ofstream(dir_ / "part_stress.txt") << "";
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     JobSpec parse(const std::string& text) { return parse_job(text, "job.yaml", dir_.string()); }
     std::string error(const std::string& text) {
@@ -40,7 +35,7 @@ class JobSpecTest : public ::testing::Test {
         return "";
     }
 
-    fs::path dir_;
+    fibrecell::test::TempDir dir_{"job"};
 };
 
 const char* kMinimal = "name: bracket\nmodel:\n  mesh: part.msh\n";

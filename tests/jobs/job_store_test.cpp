@@ -25,7 +25,6 @@ namespace {
 class JobStoreTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = test::fresh_test_dir("fibrecell-jobstore");
         // A tiny stressed box: submission checks the job file, nothing is planned.
         const auto mesh = planner::structured_tet_mesh({.size = {10, 10, 2}, .cells = {1, 1, 1}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(),
@@ -34,7 +33,6 @@ class JobStoreTest : public ::testing::Test {
         input_.job_yaml = "name: box\nmodel:\n  mesh: box.vtk\n";
         input_.files = {{"box.vtk", read_file(dir_ / "box.vtk")}};
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     JobStoreOptions options() const { return {.state_dir = dir_ / "state"}; }
     fs::path state_file(std::int64_t id) const {
@@ -64,7 +62,7 @@ class JobStoreTest : public ::testing::Test {
         ASSERT_EQ(store.get(id).state, target);
     }
 
-    fs::path dir_;
+    test::TempDir dir_{"jobstore"};
     JobInput input_;
 };
 
@@ -149,7 +147,7 @@ TEST_F(JobStoreTest, StoreWalksEveryUserActionFromEveryState) {
     // lands where the table says and is on disk; a refused one changes nothing on disk either.
     JobStoreOptions o = options();
     // 50 stores and ~250 durable writes: on tmpfs, where fsync costs nothing, when there is one.
-    if (fs::is_directory("/dev/shm")) o.state_dir = fs::path("/dev/shm") / dir_.filename();
+    if (fs::is_directory("/dev/shm")) o.state_dir = fs::path("/dev/shm") / dir_.path().filename();
     o.max_queued = 1000;
     o.keep_completed = 1000;
     const auto walk_state_file = [&](std::int64_t id) {

@@ -26,17 +26,15 @@ namespace {
 class PlanJobTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = test::fresh_test_dir("fibrecell-planjob");
         test::write_tension_bar(dir_ / "bar.vtk");
         std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n";
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     PlanRequest request(const std::string& out) const {
         return {.job_file = dir_ / "bar.job.yaml", .out_dir = dir_ / out};
     }
 
-    fs::path dir_;
+    test::TempDir dir_{"planjob"};
 };
 
 }  // namespace

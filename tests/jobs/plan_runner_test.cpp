@@ -28,7 +28,6 @@ namespace {
 class PlanRunnerTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = test::fresh_test_dir("fibrecell-planrunner");
         // The bar, and the same mesh without stress, which cannot be planned.
         test::write_tension_bar(dir_ / "bar.vtk");
         test::write_tension_bar(dir_ / "bare.vtk", false);
@@ -37,7 +36,6 @@ class PlanRunnerTest : public ::testing::Test {
         broken_.job_yaml = "name: broken\nmodel:\n  mesh: bare.vtk\n";
         broken_.files = {{"bare.vtk", read_file(dir_ / "bare.vtk")}};
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     JobStoreOptions options() const { return {.state_dir = dir_ / "state"}; }
     PlanRunnerOptions runner_options(int workers) const {
@@ -46,7 +44,7 @@ class PlanRunnerTest : public ::testing::Test {
         return o;
     }
 
-    fs::path dir_;
+    test::TempDir dir_{"planrunner"};
     JobInput bar_, broken_;
 };
 

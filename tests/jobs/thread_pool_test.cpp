@@ -96,7 +96,8 @@ TEST(ThreadPool, ItsThreadsRunAtTheNiceValueAskedFor) {
 
 TEST(ThreadPool, TheLayerStageOnThePoolMatchesOneThreadAndReportsOneCallAtATime) {
     // A 50 x 6 x 4 mm bar in tension: ten layers planned at once on four threads.
-    const fs::path dir = fibrecell::test::fresh_test_dir("fibrecell-pool");
+    const fibrecell::test::TempDir tmp("pool");
+    const fs::path dir = tmp.path();
     const auto mesh = planner::structured_tet_mesh({.size = {50, 6, 4}, .cells = {25, 3, 5}});
     std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
     for (auto& s : stress) s(0, 0) = 30.0;
@@ -124,5 +125,4 @@ TEST(ThreadPool, TheLayerStageOnThePoolMatchesOneThreadAndReportsOneCallAtATime)
     EXPECT_GE(parallel.layers.size(), 8u);
     EXPECT_EQ(planner::toolpaths_json_text("field", parallel.layers),
               planner::toolpaths_json_text("field", serial.layers));
-    fs::remove_all(dir);
 }

@@ -7,6 +7,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -23,15 +24,6 @@ namespace {
 
 class FieldStageTest : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-field-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
     // A 20 x 10 x 2 mm bar in uniaxial tension along x, except a block in pure compression
     // (rule 3) at x < 4; eigen-solver signs are whatever they are.
     std::string write_bar() {
@@ -54,7 +46,7 @@ class FieldStageTest : public ::testing::Test {
         std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n" << extra;
     }
 
-    fs::path dir_;
+    fibrecell::test::TempDir dir_{"field"};
     TetMesh mesh_;
     std::vector<StressTensor> stress_;
 };

@@ -9,6 +9,7 @@
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,12 +30,6 @@ namespace {
 class LayerStageTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        // ctest runs each test in its own process, in parallel: one folder per test.
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-layer-stage-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         // 100 x 20 x 1.6 mm bar pulled along x: two PLA layers, a CCF layer on each.
         const TetMesh mesh = structured_tet_mesh({.size = {100, 20, 1.6}, .cells = {50, 10, 2}});
         std::vector<StressTensor> stress(mesh.tet_count(), StressTensor::Zero());
@@ -43,9 +38,8 @@ class LayerStageTest : public ::testing::Test {
         std::ofstream(dir_ / "bar.job.yaml") << "name: bar\nmodel:\n  mesh: bar.vtk\n"
                                                 "placement:\n  position_mm: [50, 10]\n";
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    fs::path dir_;
+    fibrecell::test::TempDir dir_{"layer-stage"};
 };
 
 }  // namespace

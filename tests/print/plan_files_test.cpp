@@ -7,6 +7,7 @@
 #include "daemon/print/plan_writer.hpp"
 #include "daemon/print/print_plan.hpp"
 #include "daemon/print/program_file.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,7 +15,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
 using namespace fibrecell;
 using namespace fibrecell::daemon::print;
@@ -24,11 +24,6 @@ namespace abb = drivers::abb;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // PLA layer 0 (a square), CCF layers 1 and 3 (straight fibres), PLA layer 2: several chunks at a
 // small line limit.
@@ -57,8 +52,6 @@ std::vector<planner::ToolpathLayer> small_part() {
 class PlanFilesTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "plan-files-XXXXXX").string();
-        dir_ = ::mkdtemp(tmpl.data());
         cell_.robot.rapid.max_chunk_lines = 60;
         settings_ = print_settings(planner::parse_job("name: part\nmodel: {mesh: loop.msh}\n",
                                                       "part.job.yaml",
@@ -71,8 +64,6 @@ class PlanFilesTest : public ::testing::Test {
                                        .settings = settings_});
         out.finish("part", cell_facts(cell_));
     }
-    void TearDown() override { fs::remove_all(dir_); }
-
     std::string refusal(const CellConfig& cell) const {
         try {
             load_print_plan(dir_, cell);
@@ -82,7 +73,8 @@ class PlanFilesTest : public ::testing::Test {
         return "";
     }
 
-    fs::path dir_;
+    fibrecell::test::TempDir tmp_{"plan-files"};
+    const fs::path dir_ = tmp_.path();
     CellConfig cell_;
     PrintSettings settings_;
     RobotPlan plan_;
@@ -117,13 +109,13 @@ TEST_F(PlanFilesTest, ThePrintGetsExactlyWhatWasPlanned) {
     ASSERT_EQ(p.chunks.size(), plan_.rapid.modules.size());
     for (std::size_t c = 0; c < p.chunks.size(); ++c) {
         EXPECT_EQ(p.chunks[c].file_name, plan_.rapid.modules[c].file_name);
-        EXPECT_EQ(p.chunks[c].text, slurp(dir_ / "rapid" / p.chunks[c].file_name));
+        EXPECT_EQ(p.chunks[c].text, fibrecell::test::read_file(dir_ / "rapid" / p.chunks[c].file_name));
         EXPECT_EQ(p.chunks[c].text, plan_.rapid.modules[c].text);
     }
     EXPECT_EQ(to_json(p.print.settings), to_json(settings_));
     EXPECT_EQ(p.layers(), 4u);
     // program.json holds the program exactly: written again, it is the same text.
-    EXPECT_EQ(program_json_text(p.program, p.joints), slurp(dir_ / "program.json"));
+    EXPECT_EQ(program_json_text(p.program, p.joints), fibrecell::test::read_file(dir_ / "program.json"));
     ASSERT_EQ(p.program.events.size(), plan_.program.events.size());
     for (std::size_t i = 0; i < p.program.events.size(); ++i) {
         EXPECT_EQ(p.program.events[i].kind, plan_.program.events[i].kind);
@@ -135,7 +127,7 @@ TEST_F(PlanFilesTest, ThePrintGetsExactlyWhatWasPlanned) {
 
 TEST_F(PlanFilesTest, AChangedByteMakesThePlanDamaged) {
     const fs::path chunk = dir_ / "rapid" / "FcChunk0002.mod";
-    std::string text = slurp(chunk);
+    std::string text = fibrecell::test::read_file(chunk);
     text[text.size() / 2] ^= 1;
     std::ofstream(chunk, std::ios::binary) << text;
     EXPECT_THAT(refusal(cell_), HasSubstr("the plan is damaged (rapid/FcChunk0002.mod: sha256 "
@@ -198,7 +190,7 @@ TEST_F(PlanFilesTest, AReentryRewritesOnlyTheInterruptedChunk) {
               static_cast<std::size_t>(cell_.robot.rapid.max_chunk_lines));
     EXPECT_NE(p.chunks[0].text, plan_.rapid.modules[c].text);
     for (std::size_t k = 1; k < p.chunks.size(); ++k)
-        EXPECT_EQ(p.chunks[k].text, slurp(dir_ / "rapid" / plan_.rapid.modules[c + k].file_name));
+        EXPECT_EQ(p.chunks[k].text, fibrecell::test::read_file(dir_ / "rapid" / plan_.rapid.modules[c + k].file_name));
     // Nothing left: no chunk at all.
     const PrintPlan done = load_print_plan(dir_, cell_, static_cast<std::int64_t>(events.size()));
     ASSERT_TRUE(done.resume);

@@ -1,26 +1,22 @@
 #pragma once
-// A whole simulated cell for end-to-end print tests, every driver real: the simulated IRC5
-// (RAPID task executing the real FcMain.mod and the job's chunks, motion, RWS with digest auth,
-// the Modbus coupler) on loopback, the mock GT2560 on a pseudo-terminal, and the service's links
-// to them (RwsClient, RobotIoLink, MarlinLink, ExtruderController) driving a PrintSession. The
-// expected board log is rebuilt independently from the program and a second ExtruderController.
+// End-to-end print tests on the whole simulated cell as the service builds it (SimCellFixture:
+// CellDevices with the simulated IRC5 running the real FcMain.mod and the job's chunks, the mock
+// GT2560, every driver real), driving a PrintSession that gets the links' events as in the
+// service. The expected board log is rebuilt independently from the program and a second
+// ExtruderController.
 #include "daemon/print/print_session.hpp"
 #include "drivers/abb/rapid/rapid_writer.hpp"
-#include "drivers/sim/cell/sim_cell.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
 #include "../sync/metered_pieces.hpp"
+#include "tests/support/eventually.hpp"
+#include "tests/support/sim_cell_fixture.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <map>
-#include <mutex>
 #include <numbers>
-#include <thread>
 
 namespace fibrecell::test {
 
@@ -35,16 +31,6 @@ using drivers::abb::EventKind;
 // millisecond of the service's latency moves the simulated robot `scale` times as far.
 constexpr double print_time_scale = 20;
 constexpr double pla_speed = 12, ccf_speed = 5;
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds timeout = 20'000ms) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-        if (pred()) return true;
-        std::this_thread::sleep_for(2ms);
-    }
-    return pred();
-}
 
 inline planner::ToolpathLayer pla_square(int index, double z) {
     planner::ToolpathLayer pla{.index = index, .z = z, .head = planner::Head::pla, .thickness = 0.8};
@@ -62,6 +48,13 @@ inline planner::ToolpathLayer fibre_lines(int index, double z, int count, int le
         ccf.paths.push_back(fibre);
     }
     return ccf;
+}
+
+// The sequence of the first event of `kind` (0: none).
+inline std::int64_t first_of(const abb::PrintProgram& program, EventKind kind) {
+    for (const auto& e : program.events)
+        if (e.kind == kind) return e.sequence;
+    return 0;
 }
 
 inline abb::PrintProgram make_program(const std::vector<planner::ToolpathLayer>& layers) {
@@ -108,72 +101,12 @@ inline std::vector<std::string> expected_board_log(const abb::PrintProgram& prog
     return out;
 }
 
-class PrintCellTest : public ::testing::Test {
+class PrintCellTest : public SimCellFixture {
   protected:
-    void SetUp() override {
-        std::string tmpl = (std::filesystem::temp_directory_path() / "print-XXXXXX").string();
-        dir_ = mkdtemp(tmpl.data());
-        drivers::sim::SimCellOptions co;
-        co.time_scale = scale_;
-        co.main_module = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
-        cell_ = std::make_unique<drivers::sim::SimCell>(co);
-
-        drivers::sim::MockGt2560Options mo;
-        mo.time_scale = scale_;
-        mo.bootloader_s = 0.2;
-        mo.hotend_tau_s = 0.5;
-        mo.residency_s = 0.2;
-        mo.link_path = (dir_ / "ttyGT2560").string();
-        mock_ = std::make_unique<drivers::sim::MockGt2560>(mo);
-        drivers::marlin::MarlinLinkConfig lc;
-        lc.serial.device = mock_->port_path();
-        board_.configure(lc);
-        board_.on_temperature([this](const auto& r) {
-            std::lock_guard lock(mu_);
-            if (session_) session_->board_temperature(r);
-        });
-        board_.activate();
-
-        rws_ = std::make_unique<abb::rws::RwsClient>(
-            abb::rws::RwsClientConfig{.port = cell_->rws_port()});
-        abb::RobotIoConfig rc;
-        rc.host = "127.0.0.1";
-        rc.port = cell_->modbus_port();
-        rc.poll_period = 2ms;
-        rc.stable_reads = 1;
-        rc.response_timeout = 200ms;
-        rc.heartbeat_period = 20ms;
-        rc.robot_heartbeat_timeout = 500ms;
-        rc.reconnect_backoff_min = 20ms;
-        rc.reconnect_backoff_max = 100ms;
-        rc.stats_log_period = 0s;
-        robot_ = std::make_unique<abb::RobotIoLink>(rc);
-        robot_->on_event([this](const auto& c) {
-            std::lock_guard lock(mu_);
-            if (session_) session_->robot_event(c);
-        });
-        robot_->on_state([this](const auto& c) {
-            std::lock_guard lock(mu_);
-            if (session_) session_->robot_link_state(c);
-        });
-        robot_->start();
-        ASSERT_TRUE(robot_->wait_until_up(5s)) << robot_->snapshot().last_error;
-        job_start_ = mock_->executed_count();
-    }
-
     void TearDown() override {
-        {
-            std::lock_guard lock(mu_);
-            session_.reset();
-        }
-        if (robot_) robot_->stop();
-        board_.on_temperature(nullptr);
-        if (board_.state() == drivers::DeviceState::active) board_.deactivate();
-        robot_.reset();
-        rws_.reset();
-        cell_.reset();
-        mock_.reset();
-        if (!dir_.empty()) std::filesystem::remove_all(dir_);
+        if (devices_) devices_->set_print(nullptr);
+        session_.reset();
+        SimCellFixture::TearDown();
     }
 
     // RAPID chunks of the program (small chunks so that FcMain loads several).
@@ -197,28 +130,24 @@ class PrintCellTest : public ::testing::Test {
     void make_session(const abb::PrintProgram& program, std::vector<abb::ChunkFile> chunks,
                       PrintOptions o) {
         program_ = program;
-        auto s = std::make_unique<PrintSession>(program_, std::move(chunks),
-                                                daemon::print::PrintLinks{*rws_, *robot_, board_, extruder_}, o);
-        std::lock_guard lock(mu_);
-        session_ = std::move(s);
+        devices_->set_print(nullptr);
+        session_ = std::make_unique<PrintSession>(program_, std::move(chunks), devices_->links(), o);
+        devices_->set_print(session_.get());  // the links' events, as the service routes them
     }
 
-    std::vector<std::string> executed_job() const {
-        std::vector<std::string> out;
-        const auto log = mock_->executed();
-        for (std::size_t i = job_start_; i < log.size(); ++i) out.push_back(log[i].text);
-        return out;
-    }
-    std::vector<drivers::sim::ExecutedCommand> executed_job_entries() const {
-        const auto log = mock_->executed();
-        return {log.begin() + static_cast<std::ptrdiff_t>(job_start_), log.end()};
+    // Waits until the session meters the path of event `sequence` and has sent `pieces` of it.
+    bool metering(std::int64_t sequence, std::size_t pieces) {
+        return eventually([&] {
+            const auto m = session_->poll().sync.metering;
+            return m.active && m.sequence == sequence && m.pieces_sent >= pieces;
+        });
     }
 
     // Where the robot's TCP (bed frame) was when the board executed something at its time t_s
     // (after the last sample the robot stands where it stopped).
     std::optional<Eigen::Vector3d> robot_at_board_time(
         const std::vector<drivers::sim::TrajectorySample>& trajectory, double board_t_s) const {
-        const auto wall = mock_->wall_at(board_t_s);
+        const auto wall = mock().wall_at(board_t_s);
         if (!trajectory.empty() && wall > trajectory.back().wall) return trajectory.back().tcp_wobj_mm;
         const auto s = drivers::sim::sample_at(trajectory, wall);
         if (!s) return std::nullopt;
@@ -234,7 +163,7 @@ class PrintCellTest : public ::testing::Test {
                                         const Eigen::Vector3d& point, double board_t_s,
                                         bool at_end, double speed_mm_s) const {
         if (trajectory.empty()) return std::nullopt;
-        const auto wall = mock_->wall_at(board_t_s);
+        const auto wall = mock().wall_at(board_t_s);
         const bool after_all = wall > trajectory.back().wall;
         const auto robot = after_all ? std::optional(trajectory.back())
                                      : drivers::sim::sample_at(trajectory, wall);
@@ -265,18 +194,8 @@ class PrintCellTest : public ::testing::Test {
         return std::chrono::duration<double>(d).count();
     }
 
-    double scale_ = print_time_scale;  // a derived fixture may lower it in its constructor
-    std::filesystem::path dir_;
-    std::unique_ptr<drivers::sim::SimCell> cell_;
-    std::unique_ptr<drivers::sim::MockGt2560> mock_;
-    drivers::marlin::MarlinLink board_;
-    drivers::ExtruderController extruder_{drivers::ExtruderConfig{}};
-    std::unique_ptr<abb::rws::RwsClient> rws_;
-    std::unique_ptr<abb::RobotIoLink> robot_;
-    std::mutex mu_;
     abb::PrintProgram program_;
     std::unique_ptr<PrintSession> session_;
-    std::size_t job_start_ = 0;
 };
 
 }  // namespace fibrecell::test

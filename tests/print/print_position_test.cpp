@@ -44,8 +44,8 @@ TEST_F(PrintPositionTest, ASmallJobRunsTheExactBoardLogAndCutsAndExtrudesWhereIt
     // Every cut: where the robot was (its recorded trajectory) when the board switched the
     // cutter on, against the cut point; every PLA path: where it was when the board's feed
     // started (the prime move's end) and stopped (the retract's start), against the path's ends.
-    const auto trajectory = cell_->take_trajectory();
-    const auto pins = mock_->pin_events();
+    const auto trajectory = cell().take_trajectory();
+    const auto pins = mock().pin_events();
     const auto entries = executed_job_entries();
     std::vector<double> cut_errors, pla_errors;
     std::size_t pin = 0;

@@ -40,23 +40,19 @@ TEST_F(PrintCellTest, AFourCutJobRunsTheExactBoardLogAtTimeScale20) {
 
 TEST_F(PrintCellTest, PauseInTheMiddleOfAFibrePathLosesAndRepeatsNoFeed) {
     const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
-    std::int64_t fibre_start = 0;
-    for (const auto& e : program.events)
-        if (e.kind == EventKind::fibre_start) fibre_start = e.sequence;
     make_session(program, chunks_of(program), options());
     session_->start();
-    ASSERT_TRUE(eventually([&] {
-        const auto s = session_->poll().sync;
-        return s.metering.active && s.metering.sequence == fibre_start && s.metering.pieces_sent >= 15;
-    }));
+    ASSERT_TRUE(metering(first_of(program, EventKind::fibre_start), 15));
     session_->pause();
     // The robot brakes and stands; the feed stops with it.
-    ASSERT_TRUE(eventually([&] { return !cell_->motion_status().moving; }, 5s));
+    ASSERT_TRUE(eventually([&] { return !cell().motion_status().moving; }));
     const auto sent = session_->poll().sync.metering.pieces_sent;
-    const auto where = cell_->robot().path_mm;
-    std::this_thread::sleep_for(300ms);  // 6 simulated s: 30 mm of path if it went on
+    const auto where = cell().robot().path_mm;
+    // 6 simulated s later (30 mm of path if it went on):
+    const double paused_at_s = cell().clock().now_s();
+    ASSERT_TRUE(eventually([&] { return cell().clock().now_s() >= paused_at_s + 6.0; }));
     EXPECT_EQ(session_->poll().sync.metering.pieces_sent, sent);
-    EXPECT_NEAR(cell_->robot().path_mm, where, 1e-9);
+    EXPECT_NEAR(cell().robot().path_mm, where, 1e-9);
     session_->resume();
     ASSERT_EQ(session_->wait_until_done(60s), PrintPhase::completed) << session_->poll().reason;
     const auto log = executed_job();
@@ -66,30 +62,24 @@ TEST_F(PrintCellTest, PauseInTheMiddleOfAFibrePathLosesAndRepeatsNoFeed) {
 
 TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
     const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
-    std::int64_t fibre_start = 0;
-    for (const auto& e : program.events)
-        if (e.kind == EventKind::fibre_start) fibre_start = e.sequence;
     make_session(program, chunks_of(program), options());
     session_->start();
-    ASSERT_TRUE(eventually([&] {
-        const auto s = session_->poll().sync;
-        return s.metering.active && s.metering.sequence == fibre_start && s.metering.pieces_sent >= 10;
-    }));
-    cell_->drop_modbus_link(1500ms);
+    ASSERT_TRUE(metering(first_of(program, EventKind::fibre_start), 10));
+    cell().drop_modbus_link(1500ms);
     // The service side: a fault with its reason; the robot side: FcMain holds on the lost
     // heartbeat and the robot stands.
-    ASSERT_TRUE(eventually([&] { return session_->poll().phase == PrintPhase::faulted; }, 5s));
+    ASSERT_TRUE(eventually([&] { return session_->poll().phase == PrintPhase::faulted; }));
     EXPECT_THAT(session_->poll().reason, HasSubstr("robot I/O"));
     ASSERT_TRUE(eventually([&] {
-        return !cell_->motion_status().moving &&
-               abb::FcMainControl(*rws_).status().state == abb::FcState::held;
-    }, 5s)) << "FcMain: " << abb::to_string(abb::FcMainControl(*rws_).status().state);
+        return !cell().motion_status().moving &&
+               abb::FcMainControl(rws()).status().state == abb::FcState::held;
+    })) << "FcMain: " << abb::to_string(abb::FcMainControl(rws()).status().state);
 
-    ASSERT_TRUE(robot_->wait_until_up(10s));
+    ASSERT_TRUE(robot().wait_until_up(10s));
     session_->resume();
     const auto phase = session_->wait_until_done(60s);
     std::string task_log;
-    for (const auto& e : cell_->task_log()) task_log += e.text + "\n";
+    for (const auto& e : cell().task_log()) task_log += e.text + "\n";
     ASSERT_EQ(phase, PrintPhase::completed) << session_->poll().reason << "\nengine: "
                                             << session_->poll().sync.fault_reason << "\nRAPID:\n"
                                             << task_log;
@@ -107,14 +97,14 @@ TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
 TEST_F(PrintCellTest, OnePercentCorruptedSerialLinesLeaveTheBoardLogIdentical) {
     const abb::PrintProgram program = make_program({pla_square(0, 0.8), fibre_lines(1, 0.85, 1)});
     const auto expected = expected_board_log(program);
-    const std::int64_t first = *mock_->executed().back().line + 1;
+    const std::int64_t first = *mock().executed().back().line + 1;
     const auto lines = static_cast<std::int64_t>(expected.size());
-    for (std::int64_t k = first + 7; k < first + lines; k += 100) mock_->corrupt_line(k);
+    for (std::int64_t k = first + 7; k < first + lines; k += 100) mock().corrupt_line(k);
     make_session(program, chunks_of(program), options());
     session_->start();
     ASSERT_EQ(session_->wait_until_done(60s), PrintPhase::completed) << session_->poll().reason;
     EXPECT_EQ(executed_job(), expected);
-    EXPECT_GE(board_.stats().resend_requests, static_cast<std::uint64_t>(lines / 100));
+    EXPECT_GE(board().stats().resend_requests, static_cast<std::uint64_t>(lines / 100));
 }
 
 TEST_F(PrintCellTest, AChunkThatDoesNotBuildIsRefusedBeforeAnythingMoves) {
@@ -133,6 +123,6 @@ TEST_F(PrintCellTest, AChunkThatDoesNotBuildIsRefusedBeforeAnythingMoves) {
         EXPECT_THAT(e.what(), HasSubstr("pre-flight: " + chunks[1].file_name));
     }
     EXPECT_TRUE(executed_job().empty());
-    EXPECT_FALSE(cell_->motion_status().moving);
-    EXPECT_EQ(cell_->robot().path_mm, 0);
+    EXPECT_FALSE(cell().motion_status().moving);
+    EXPECT_EQ(cell().robot().path_mm, 0);
 }

@@ -2,14 +2,14 @@
 // A program of this build run as a child process for the service tests: its stdout and stderr go
 // to a log file (read back for messages and errors), SIGTERM or SIGKILL on request, reaped and
 // killed at the end at the latest.
+#include "tests/support/eventually.hpp"
+#include "tests/support/temp_dir.hpp"
+
 #include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fcntl.h>
@@ -67,31 +67,20 @@ class ChildProcess {
     bool terminate(std::chrono::milliseconds timeout) {
         if (pid_ <= 0) return true;
         ::kill(pid_, SIGTERM);
-        const auto end = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < end) {
-            if (!running()) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
+        if (eventually([&] { return !running(); }, timeout, std::chrono::milliseconds(10))) return true;
         kill_now();
         return false;
     }
     int exit_status() const { return exit_status_; }
 
-    std::string log() const {
-        std::ifstream in(log_);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    std::string log() const { return read_file(log_); }
     // Waits until the log contains `text`; false after `timeout` or when the child ended.
     bool wait_for_log(const std::string& text, std::chrono::milliseconds timeout) {
-        const auto end = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < end) {
-            if (log().find(text) != std::string::npos) return true;
-            if (!running()) return log().find(text) != std::string::npos;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return false;
+        bool ended = false;
+        const auto found = [&] { return log().find(text) != std::string::npos; };
+        return eventually([&] { return found() || (ended = !running()); }, timeout,
+                          std::chrono::milliseconds(10)) &&
+               (!ended || found());
     }
 
   private:

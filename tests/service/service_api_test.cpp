@@ -155,9 +155,8 @@ TEST_F(ServiceTest, ActionsThatDoNotFitTheJobsStateAreRefusedAndChangeNothing) {
     EXPECT_EQ(error_code([&] { c.call("job.get", {{"job", failed}}); }), -32002);
     // The cell is free again once the runner has stopped the robot program.
     json cell;
-    for (int i = 0; i < 500 && !(cell = c.call("cell.status"))["job"].is_null(); ++i)
-        std::this_thread::sleep_for(20ms);
-    EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
+    EXPECT_TRUE(eventually([&] { return (cell = c.call("cell.status"))["job"].is_null(); }, 20s, 20ms))
+        << cell.dump();
 }
 
 TEST_F(ServiceTest, EstopStopsTheBoardAndTheRobotAndAbortsTheJob) {
@@ -170,11 +169,10 @@ TEST_F(ServiceTest, EstopStopsTheBoardAndTheRobotAndAbortsTheJob) {
     EXPECT_EQ(wait_for_state(c, id, "aborted").value("state", ""), "aborted");
     // M112 killed the board (it needs a reset); the robot program took the abort request.
     json cell;
-    for (int i = 0; i < 500; ++i) {
+    eventually([&] {
         cell = c.call("cell.status");
-        if (cell["job"].is_null() && cell["board"].value("state", "") != "active") break;
-        std::this_thread::sleep_for(20ms);
-    }
+        return cell["job"].is_null() && cell["board"].value("state", "") != "active";
+    }, 20s, 20ms);
     EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
     EXPECT_NE(cell["board"].value("state", ""), "active") << cell.dump();
     EXPECT_TRUE(service_->running());
@@ -188,19 +186,17 @@ TEST_F(ServiceTest, APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst) {
     c.call("job.pause", {{"job", id}});
     ASSERT_EQ(wait_for_state(c, id, "paused").value("state", ""), "paused");
     json board;
-    for (int i = 0; i < 500; ++i) {  // the board reports its targets about once a second
+    eventually([&] {  // the board reports its targets about once a second
         board = c.call("cell.status")["board"];
-        if (board.value("pla_target_c", -1.0) == 0 && board.value("ccf_target_c", -1.0) == 0) break;
-        std::this_thread::sleep_for(20ms);
-    }
+        return board.value("pla_target_c", -1.0) == 0 && board.value("ccf_target_c", -1.0) == 0;
+    }, 20s, 20ms);
     EXPECT_EQ(board.value("pla_target_c", -1.0), 0) << board.dump();
     EXPECT_EQ(board.value("ccf_target_c", -1.0), 0) << board.dump();
     c.call("job.resume", {{"job", id}});
-    for (int i = 0; i < 500; ++i) {
+    eventually([&] {
         board = c.call("cell.status")["board"];
-        if (board.value("pla_target_c", 0.0) == 200) break;
-        std::this_thread::sleep_for(20ms);
-    }
+        return board.value("pla_target_c", 0.0) == 200;
+    }, 20s, 20ms);
     EXPECT_EQ(board.value("pla_target_c", 0.0), 200) << board.dump();
     EXPECT_EQ(c.call("job.get", {{"job", id}}).value("state", ""), "printing");
     c.call("job.abort", {{"job", id}});

@@ -10,6 +10,8 @@
 #include "planner/mesh/structured_mesh.hpp"
 #include "child_process.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/eventually.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +22,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iostream>
 #include <string>
 
 namespace fibrecell::test {
@@ -42,20 +44,9 @@ inline int free_tcp_port() {
     return ntohs(a.sin_port);
 }
 
-inline std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class ServiceTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell-service-" + std::to_string(::getpid()) + "-" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
         fs::create_directories(dir_ / "jobs");
         const auto mesh = planner::structured_tet_mesh({.size = {60, 10, 1.6}, .cells = {30, 5, 2}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
@@ -69,7 +60,10 @@ class ServiceTest : public ::testing::Test {
     }
     void TearDown() override {
         service_.reset();
-        if (!HasFailure()) fs::remove_all(dir_);
+        if (HasFailure()) {
+            dir_.keep();  // the service's logs and state, for the failure
+            std::cerr << "kept " << dir_.string() << "\n";
+        }
     }
 
     fs::path socket() const { return dir_ / "api.sock"; }
@@ -120,17 +114,15 @@ class ServiceTest : public ::testing::Test {
     // Polls job.get until the job is in `state`; the last answer (check its state).
     json wait_for_state(api::ApiClient& c, std::int64_t id, const std::string& state,
                         std::chrono::milliseconds timeout = 60s) {
-        const auto end = std::chrono::steady_clock::now() + timeout;
         json job;
-        do {
+        eventually([&] {
             job = c.call("job.get", {{"job", id}});
-            if (job.value("state", "") == state) return job;
-            std::this_thread::sleep_for(20ms);
-        } while (std::chrono::steady_clock::now() < end);
+            return job.value("state", "") == state;
+        }, timeout, 20ms);
         return job;
     }
 
-    fs::path dir_;
+    TempDir dir_{"service"};
     int tcp_port_ = free_tcp_port();
     int starts_ = 0;  // each start of the service logs to a file of its own
     std::unique_ptr<ChildProcess> service_;

@@ -52,15 +52,16 @@ std::vector<TrajectoryRow> read_trajectory(const fs::path& p) {
     return rows;
 }
 
-// Rows recorded so far, once the robot has stood still long enough for them all to be written.
-std::size_t settled_rows(const fs::path& p) {
-    std::size_t rows = read_trajectory(p).size();
-    for (int i = 0; i < 100; ++i) {
-        std::this_thread::sleep_for(300ms);
-        const std::size_t now = read_trajectory(p).size();
-        if (now == rows) break;
-        rows = now;
-    }
+// Rows recorded up to the hold: the robot program reports it no longer runs, and the file (rows
+// are added every 100 ms) ends with the robot's standstill.
+std::size_t rows_when_held(api::ApiClient& c, const fs::path& p) {
+    std::size_t rows = 0;
+    eventually([&] {
+        const std::vector<TrajectoryRow> t = read_trajectory(p);
+        rows = t.size();
+        return !t.empty() && t.back().speed == 0 &&
+               !c.call("cell.status")["robot"].value("running", true);
+    }, 60s, 50ms);
     return rows;
 }
 
@@ -110,10 +111,8 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
         // Well into the print, with the robot laying a fibre (threaded, moving along the path):
         // then the plug is pulled. FcMain holds the robot on the lost heartbeat, in that path.
         const fs::path journal = state_dir() / "jobs" / std::to_string(id) / "journal.jsonl";
-        const auto end = std::chrono::steady_clock::now() + 120s;
-        while (!laying_fibre_after(journal, 12) && std::chrono::steady_clock::now() < end)
-            std::this_thread::sleep_for(2ms);
-        ASSERT_TRUE(laying_fibre_after(journal, 12)) << read_file(journal);
+        ASSERT_TRUE(eventually([&] { return laying_fibre_after(journal, 12); }, 120s, 2ms))
+            << read_file(journal);
     }
     service_->kill_now();
 
@@ -123,7 +122,7 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     ASSERT_EQ(interrupted.value("state", ""), "interrupted") << interrupted.dump(2);
     const auto last = interrupted.value("last_confirmed_event", std::int64_t{0});
     EXPECT_GE(last, 12);
-    const std::size_t held_rows = settled_rows(trajectory);
+    const std::size_t held_rows = rows_when_held(c, trajectory);
     ASSERT_EQ(c.call("job.resume", {{"job", id}}).value("state", ""), "starting");
     const json done = wait_for_state(c, id, "completed", 180s);
     ASSERT_EQ(done.value("state", ""), "completed") << done.dump(2) << "\n" << service_->log();

@@ -6,6 +6,7 @@
 
 #include "drivers/abb/cell/robot_config.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
+#include "tests/support/eventually.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +22,7 @@
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -86,17 +88,6 @@ std::vector<std::uint64_t> queue_chain(MotionSimulator& sim, std::vector<MotionS
     for (MotionSegment& s : chain) ids.push_back(sim.queue(std::move(s)));
     sim.start_move();
     return ids;
-}
-
-// Waits (real time) until `done` holds; false after `timeout`.
-bool eventually(const MotionSimulator& sim, const std::function<bool()>& done,
-                std::chrono::milliseconds timeout = 10s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!done()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        sim.wait(1ms);
-    }
-    return true;
 }
 
 // Trigger firings seen from the motion thread: a name and the robot's path position then.
@@ -189,7 +180,7 @@ TEST_F(MotionSimulatorTest, FineMoveFollowsTheAnalyticTrapezoid) {
     const Target end = along_x(100);
     const std::uint64_t id = sim.queue(move_to(end, true, "FcChunk0001 line 12"));
     EXPECT_EQ(id, 1u);
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     EXPECT_TRUE(sim.done(id));
     EXPECT_EQ(sim.status().last_done, id);
     EXPECT_EQ(sim.status().pending, 0u);
@@ -220,7 +211,7 @@ TEST_F(MotionSimulatorTest, ShortMoveIsATriangle) {
     MotionSimulator sim(clock, options());
     // 2 mm < v^2/a = 2.5 mm: the peak is sqrt(a L) < v, halfway in time.
     sim.queue(move_to(along_x(2), true, "short"));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const auto trajectory = sim.take_trajectory();
     const double t0 = trajectory.front().t_s, half = std::sqrt(2 / accel);
     EXPECT_NEAR(trajectory.back().t_s - t0, 2 * half, 2 * tick);
@@ -237,7 +228,7 @@ TEST_F(MotionSimulatorTest, CollinearFlyByKeepsTheSpeed) {
     MotionSimulator sim(clock, options());
     queue_chain(sim, {move_to(along_x(30), false, "a"), move_to(along_x(60), false, "b"),
                       move_to(along_x(90), true, "c")});
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const auto trajectory = sim.take_trajectory();
     const double t0 = motion_start(trajectory);
     EXPECT_NEAR(trajectory.back().t_s - t0, 90 / v + v / accel, 2 * tick);
@@ -258,7 +249,7 @@ TEST_F(MotionSimulatorTest, SquareCornerStopsAndAnObliqueOneSlows) {
     queue_chain(sim, {move_to(along_x(40), false, "x"),
                       move_to(target_at(start_mm + Eigen::Vector3d(40, -40, 0)), false, "square"),
                       move_to(target_at(start_mm + Eigen::Vector3d(80, -80, 0)), true, "oblique")});
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const auto trajectory = sim.take_trajectory();
     const TrajectorySample* corner = end_of(trajectory, 1, 40);
     const TrajectorySample* oblique = end_of(trajectory, 2, 80);
@@ -280,7 +271,7 @@ TEST_F(MotionSimulatorTest, TriggersFireOnceAtTheirPositions) {
     second.triggers = {log.trigger(sim, "stop point", 0),
                        log.trigger(sim, "lagged", 20, false, 0.05)};
     queue_chain(sim, {std::move(first), std::move(second)});
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
 
     EXPECT_EQ(log.names(),
               (std::vector<std::string>{"start", "10 after the start", "40 before the end", "end",
@@ -300,9 +291,9 @@ TEST_F(MotionSimulatorTest, StopMoveBrakesOnThePathAndStartMoveCompletesIt) {
     MotionSegment move = move_to(along_x(150), true, "long");
     move.triggers = {log.trigger(sim, "end", 0)};
     sim.queue(std::move(move));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.current().path_mm >= 40; }));
+    ASSERT_TRUE(eventually([&] { return sim.current().path_mm >= 40; }));
     sim.stop_move();
-    ASSERT_TRUE(eventually(sim, [&] { return !sim.status().moving; }));
+    ASSERT_TRUE(eventually([&] { return !sim.status().moving; }));
     const TrajectorySample stopped = sim.current();
     EXPECT_TRUE(sim.status().stopped);
     EXPECT_EQ(sim.status().pending, 1u);
@@ -311,7 +302,8 @@ TEST_F(MotionSimulatorTest, StopMoveBrakesOnThePathAndStartMoveCompletesIt) {
     EXPECT_LT(stopped.path_mm, 150 - 1.25);
     EXPECT_NEAR((stopped.tcp_wobj_mm - (start_mm + Eigen::Vector3d(stopped.path_mm, 0, 0))).norm(),
                 0, 1e-6);
-    std::this_thread::sleep_for(10ms);  // 0.4 s simulated: it stays put
+    // 0.4 s of the simulator's own time later, it has stayed put.
+    ASSERT_TRUE(eventually([&] { return slow_clock.now_s() >= stopped.t_s + 0.4; }));
     EXPECT_EQ(sim.current().path_mm, stopped.path_mm);
     EXPECT_TRUE(log.firings().empty());
 
@@ -339,7 +331,7 @@ TEST_F(MotionSimulatorTest, StopMoveBrakesOnThePathAndStartMoveCompletesIt) {
     }
 
     sim.start_move();
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     EXPECT_NEAR(sim.current().path_mm, 150, 1e-9);
     EXPECT_NEAR((sim.current().tcp_wobj_mm - (start_mm + Eigen::Vector3d(150, 0, 0))).norm(), 0,
                 1e-9);
@@ -362,12 +354,12 @@ TEST_F(MotionSimulatorTest, ClearPathDropsTheRestAndItsTriggers) {
     MotionSegment second = move_to(along_x(160), true, "second");
     second.triggers = {log.trigger(sim, "second start", 0, true)};
     const auto ids = queue_chain(sim, {std::move(first), std::move(second)});
-    ASSERT_TRUE(eventually(sim, [&] { return sim.current().path_mm >= 30; }));
+    ASSERT_TRUE(eventually([&] { return sim.current().path_mm >= 30; }));
     sim.clear_path();  // while moving: it stops first
     EXPECT_TRUE(sim.status().stopped);
     EXPECT_EQ(sim.status().pending, 0u);
     EXPECT_TRUE(sim.done(ids[0]) && sim.done(ids[1]));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const TrajectorySample stopped = sim.current();
     EXPECT_LT(stopped.path_mm, 100 - 1.25);
     EXPECT_EQ(sim.status().last_done, 0u);
@@ -377,8 +369,8 @@ TEST_F(MotionSimulatorTest, ClearPathDropsTheRestAndItsTriggers) {
     const auto id3 = sim.queue(move_to(target_at(side, home.joints), true, "after"));
     EXPECT_EQ(id3, 3u);
     sim.start_move();
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
-    std::this_thread::sleep_for(5ms);
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
+    sim.start_move();  // nothing to resume; as every command, waits for the last tick's triggers
     EXPECT_TRUE(log.firings().empty());
     EXPECT_EQ(sim.status().last_done, id3);
     EXPECT_NEAR((sim.current().tcp_wobj_mm - side).norm(), 0, 1e-9);
@@ -426,7 +418,7 @@ TEST_F(MotionSimulatorTest, UnreachableTargetOrWrongConfigurationIsAControllerEr
     EXPECT_EQ(sim.status().pending, 0u);
     EXPECT_TRUE(sim.in_position());
     EXPECT_EQ(sim.queue(move_to(along_x(10), true, "good")), 1u);  // nothing was queued
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     EXPECT_NEAR(sim.current().path_mm, 10, 1e-9);
 }
 
@@ -436,7 +428,7 @@ TEST_F(MotionSimulatorTest, MotorsOffHoldsTheRobotUntilMotorsOn) {
     MotionSegment move = move_to(along_x(150), true, "long");
     move.triggers = {log.trigger(sim, "end", 0)};
     sim.queue(std::move(move));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.current().path_mm >= 20; }));
+    ASSERT_TRUE(eventually([&] { return sim.current().path_mm >= 20; }));
     sim.motors_off("emergency stop");
     const MotionStatus off = sim.status();
     EXPECT_FALSE(off.motors_on);
@@ -445,7 +437,7 @@ TEST_F(MotionSimulatorTest, MotorsOffHoldsTheRobotUntilMotorsOn) {
     EXPECT_EQ(off.error, "emergency stop");
     const TrajectorySample held = sim.current();
     EXPECT_EQ(held.speed_mm_s, 0);
-    std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(eventually([&] { return slow_clock.now_s() >= held.t_s + 0.4; }));
     EXPECT_EQ(sim.current().path_mm, held.path_mm);
     try {
         sim.queue(move_to(along_x(50), true, "FcChunk0002 line 3"));
@@ -460,7 +452,7 @@ TEST_F(MotionSimulatorTest, MotorsOffHoldsTheRobotUntilMotorsOn) {
     EXPECT_TRUE(sim.status().motors_on);
     EXPECT_EQ(sim.status().error, "");
     sim.queue(move_to(along_x(50), true, "back"));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     EXPECT_NEAR(sim.current().path_mm, held.path_mm + std::abs(held.path_mm - 50), 1e-9);
     EXPECT_TRUE(log.firings().empty());
 }
@@ -471,7 +463,7 @@ TEST_F(MotionSimulatorTest, ReorientationTakesTurnOverVori) {
     // which v_ori paces at 10 mm / 0.5 s = 20 mm/s.
     const auto turn = queue_chain(sim, {move_to(target_at(start_mm, home.joints, 30), true, "turn"),
                                         move_to(along_x(10), true, "turn back")})[0];
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const auto trajectory = sim.take_trajectory();
     const double t0 = trajectory.front().t_s;
     // The last sample on the turn is its end.
@@ -491,7 +483,7 @@ TEST_F(MotionSimulatorTest, LinearMoveFromTheAllZeroStartJointsIsAccepted) {
     const TrajectorySample home_pose = sim.current();
     EXPECT_NEAR((home_pose.tcp_base_mm - Eigen::Vector3d(433, 0, 791.1)).norm(), 0, 1e-9);
     sim.queue(move_to(along_x(0), true, "FcChunk0001 line 5", 500));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     EXPECT_NEAR((sim.current().tcp_wobj_mm - start_mm).norm(), 0, 1e-9);
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(sim.current().joints[i], home.joints[i], 1e-9);
 }
@@ -507,7 +499,7 @@ TEST_F(MotionSimulatorTest, CatchingUpWithAFastClockStillFiresTriggersInPlace) {
     MotionSegment line = move_to(along_x(160), true, "long line");
     line.triggers = {log.trigger(sim, "at 40", 40, true), log.trigger(sim, "at 120", 120, true)};
     sim.queue(std::move(line));
-    ASSERT_TRUE(eventually(sim, [&] { return sim.in_position(); }));
+    ASSERT_TRUE(eventually([&] { return sim.in_position(); }));
     const double seen_s = fast.now_s();
     const auto trajectory = sim.take_trajectory();
     ASSERT_FALSE(trajectory.empty());

@@ -8,6 +8,7 @@
 
 #include "drivers/abb/rapid/rapid_writer.hpp"
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/eventually.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,7 @@ using namespace fibrecell;
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -33,15 +35,6 @@ constexpr double scale = 50;  // simulated seconds per real second
 const abb::RobotCellConfig cell;
 const std::string fc_main_path = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
 const std::string job_dir = "HOME:/fibrecell/job";
-
-bool eventually(const std::function<bool()>& done, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!done()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::sleep_for(1ms);
-    }
-    return true;
-}
 
 // The 1-based line of FcMain.mod that contains `text`.
 std::size_t fc_main_line(const std::string& text) {

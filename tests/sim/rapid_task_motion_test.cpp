@@ -10,6 +10,7 @@
 #include "drivers/abb/kinematics/joint_solver.hpp"
 #include "drivers/abb/kinematics/opw_kinematics.hpp"
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/eventually.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,7 @@
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -32,15 +34,6 @@ const abb::RobotCellConfig cell;
 constexpr double v = 50;        // mm/s
 constexpr double tick = 0.001;  // s, the motion thread's step
 const std::vector<std::string> signals = {"goCode", "doLamp"};
-
-bool eventually(const std::function<bool()>& done, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!done()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::sleep_for(1ms);
-    }
-    return true;
-}
 
 std::string number(double x) {
     char buf[64];

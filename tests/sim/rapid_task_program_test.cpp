@@ -5,6 +5,7 @@
 #include "drivers/sim/rapid_exec/rapid_task.hpp"
 
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/eventually.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -76,15 +78,6 @@ abb::rapid::Module module_of(const std::string& text) {
     abb::rapid::ValidateOptions o;
     o.known_signals = {"diGo", "diStep", "giCode", "doLamp", "goCode"};
     return abb::rapid::read_module(text, o);
-}
-
-bool eventually(const std::function<bool()>& done, std::chrono::milliseconds timeout = 3s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!done()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::sleep_for(1ms);
-    }
-    return true;
 }
 
 class RapidTaskProgram : public ::testing::Test {
@@ -412,7 +405,9 @@ ENDMODULE
     task.stop();
     ASSERT_TRUE(eventually([&] { return task.status().state == TaskState::stopped; }));
     const double at_stop = num("nCount");
-    std::this_thread::sleep_for(20ms);  // 0.4 s simulated: eight more counts if it ran
+    // 0.4 s simulated later: eight more counts if it ran.
+    const double stopped_at_s = clock.now_s();
+    ASSERT_TRUE(eventually([&] { return clock.now_s() >= stopped_at_s + 0.4; }));
     EXPECT_EQ(num("nCount"), at_stop);
     EXPECT_EQ(task.status().line, 10);  // stopped inside the loop
 
@@ -478,7 +473,8 @@ ENDMODULE
     EXPECT_EQ(num("nCyclesSeen"), 3);  // ExitCycle keeps VAR values
     task.start();
     ASSERT_TRUE(eventually([&] { return num("nStep") == 2 && task.status().state == TaskState::stopped; }));
-    std::this_thread::sleep_for(10ms);
+    const double stopped_at_s = clock.now_s();  // 0.2 s simulated later: still after EXIT
+    ASSERT_TRUE(eventually([&] { return clock.now_s() >= stopped_at_s + 0.2; }));
     EXPECT_EQ(num("nStep"), 2);
     EXPECT_EQ(task.status().state, TaskState::stopped);
 }

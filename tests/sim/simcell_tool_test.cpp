@@ -2,6 +2,8 @@
 // login with the configured user and a Modbus link, and exits cleanly on SIGTERM.
 #include "drivers/abb/modbus/robot_io_link.hpp"
 #include "drivers/abb/rws/rws_client.hpp"
+#include "tests/support/eventually.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -101,16 +103,11 @@ class Child {
 
     // The exit status (or 128 + signal); -1 when it does not exit within `timeout`.
     int wait(std::chrono::milliseconds timeout) {
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < deadline) {
-            int status = 0;
-            if (waitpid(pid_, &status, WNOHANG) == pid_) {
-                pid_ = -1;
-                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            }
-            std::this_thread::sleep_for(5ms);
-        }
-        return -1;
+        int status = 0;
+        if (!fibrecell::test::eventually([&] { return waitpid(pid_, &status, WNOHANG) == pid_; }, timeout, 5ms))
+            return -1;
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
 
   private:
@@ -130,13 +127,6 @@ std::optional<Ports> parse_ready(const std::string& line) {
     std::smatch m;
     if (!std::regex_match(line, m, ready)) return std::nullopt;
     return Ports{static_cast<std::uint16_t>(std::stoi(m[1])), std::stoi(m[2])};
-}
-
-std::filesystem::path temp_yaml(const std::string& name, const std::string& text) {
-    const auto path =
-        std::filesystem::temp_directory_path() / (name + "-" + std::to_string(getpid()) + ".yaml");
-    std::ofstream(path) << text;
-    return path;
 }
 
 }  // namespace
@@ -167,9 +157,9 @@ TEST(SimCellTool, PrintsItsPortsAnswersRwsAndModbusAndStopsOnSigterm) {
 }
 
 TEST(SimCellTool, TakesTheRwsUserFromTheCellConfigAndRejectsAWrongPassword) {
-    const auto cfg = temp_yaml("simcell-user",
-                               "rws:\n  user: fibrecell\n  password: s3cret\n"
-                               "robot_io:\n  stable_reads: 1\n");
+    const fibrecell::test::TempDir dir("simcell-tool");
+    const auto cfg = dir.write("cell.yaml", "rws:\n  user: fibrecell\n  password: s3cret\n"
+                                            "robot_io:\n  stable_reads: 1\n");
     Child c({"--config", cfg.string(), "--time-scale", "20", "--start"});
     const std::optional<std::string> line = c.read_line(10000ms);
     ASSERT_TRUE(line) << c.read_stderr();
@@ -189,14 +179,13 @@ TEST(SimCellTool, TakesTheRwsUserFromTheCellConfigAndRejectsAWrongPassword) {
     }
     c.signal(SIGINT);
     EXPECT_EQ(c.wait(5000ms), 0);
-    std::filesystem::remove(cfg);
 }
 
 TEST(SimCellTool, ABadConfigKeyIsNamedAndTheProgramExits) {
-    const auto cfg = temp_yaml("simcell-bad", "robot_io:\n  poll_period_ms: 0\n");
+    const fibrecell::test::TempDir dir("simcell-tool");
+    const auto cfg = dir.write("cell.yaml", "robot_io:\n  poll_period_ms: 0\n");
     Child c({"--config", cfg.string()});
     EXPECT_EQ(c.wait(10000ms), 1);
     const std::string err = c.read_stderr();
     EXPECT_NE(err.find("poll_period_ms"), std::string::npos) << err;
-    std::filesystem::remove(cfg);
 }

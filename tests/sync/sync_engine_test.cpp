@@ -169,9 +169,12 @@ TEST_F(SyncEngineTest, ADuplicateCounterValueIsIgnored) {
     again.first_read = again.accepted = std::chrono::steady_clock::now();
     engine_->robot_event(again);
     ASSERT_TRUE(eventually([&] { return engine_->status().stats.duplicates == 2; }));
-    std::this_thread::sleep_for(50ms);  // anything it wrongly sent would show by now
-    EXPECT_EQ(executed_job(), expect.lines);
     EXPECT_EQ(engine_->status().last_received, extrude_on);
+    // Anything it wrongly sent for the duplicate would stand in the board's log before the next
+    // event's commands.
+    play(expect, extrude_off, extrude_off);
+    confirmed(extrude_off);
+    EXPECT_EQ(executed_job(), expect.lines);
 }
 
 TEST_F(SyncEngineTest, TheCounterWrapsPast65535) {
@@ -208,7 +211,9 @@ TEST_F(SyncEngineTest, PauseInsideAFibrePathLosesAndRepeatsNoFeed) {
     EXPECT_TRUE(server_->wait_for_commands([](const auto& c) { return c.pause; }, 5s));
     const std::size_t sent = engine_->status().metering.pieces_sent;
     EXPECT_LT(sent, 58u);
-    std::this_thread::sleep_for(150ms);  // 3 simulated s: 15 pieces at the path's pace
+    // 3 simulated s on the board's clock: 15 pieces at the path's pace if it went on.
+    const double paused_at_s = mock_->sim_now_s();
+    ASSERT_TRUE(eventually([&] { return mock_->sim_now_s() >= paused_at_s + 3.0; }));
     EXPECT_EQ(engine_->status().metering.pieces_sent, sent);
     EXPECT_LE(executed_job().size(), threaded + sent);
 
@@ -238,11 +243,14 @@ TEST_F(SyncEngineTest, ABarrierReachedWhilePausedIsReleasedOnResume) {
     expect.start();
     expect.head_switch(Head::pla);
     board_ran(expect.lines.size());  // the board's part is done ...
-    std::this_thread::sleep_for(50ms);
+    ASSERT_TRUE(eventually([&] { return done().size() == 1; }));  // ... and the event confirmed:
+    EXPECT_FALSE(done()[0].released);
+    // a release would have been written by the link's next polls.
+    const auto polls = robot_->snapshot().stats.polls;
+    ASSERT_TRUE(eventually([&] { return robot_->snapshot().stats.polls >= polls + 3; }));
     EXPECT_EQ(server_->commands().release, 0);  // ... but the robot stays held
     EXPECT_TRUE(server_->commands().pause);
     ASSERT_EQ(done().size(), 1u);
-    EXPECT_FALSE(done()[0].released);
 
     engine_->resume();
     EXPECT_TRUE(server_->wait_for_commands(

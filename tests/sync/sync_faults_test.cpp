@@ -17,7 +17,7 @@ class SyncFaultTest : public SyncCellTest {
         const SyncStatus s = engine_->status();
         EXPECT_THAT(s.fault_reason, HasSubstr(text));
         EXPECT_TRUE(server_->wait_for_commands([](const auto& c) { return c.pause; }, 5s));
-        std::this_thread::sleep_for(20ms);
+        engine_handled_all_posted();  // the fault's aftermath: board replies, link states
         EXPECT_THAT(faults(), ElementsAre(s.fault_reason));
     }
 };
@@ -33,7 +33,9 @@ TEST_F(SyncFaultTest, TheCounterGoingBackIsAFault) {
     expect_one_fault_containing("robot event counter went back from event 3 to 2");
     const auto board_lines = executed_job().size();
     server_->set_event_number(4);  // ignored after a fault
-    std::this_thread::sleep_for(50ms);
+    // The link handed the change to the engine before it showed it; the engine took it in.
+    ASSERT_TRUE(eventually([&] { return robot_->snapshot().event_counter == 4; }));
+    engine_handled_all_posted();
     const SyncStatus s = engine_->status();
     EXPECT_EQ(s.last_confirmed, 3);
     EXPECT_EQ(s.last_received, 3);

@@ -12,13 +12,13 @@
 #include "drivers/marlin/marlin_link.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 #include "metered_pieces.hpp"
+#include "tests/support/eventually.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
 #include <numbers>
 #include <thread>
@@ -34,16 +34,6 @@ using drivers::Head;
 using drivers::abb::EventKind;
 
 constexpr double time_scale = 20;  // the mock board and the pacing: 20 simulated s per real s
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds timeout = 10'000ms) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-        if (pred()) return true;
-        std::this_thread::sleep_for(1ms);
-    }
-    return pred();
-}
 
 // Layer 0: a closed 20 mm PLA square (80 mm); layer 1: a straight 100 mm fibre path.
 inline drivers::abb::PrintProgram two_layer_program() {
@@ -76,8 +66,6 @@ class SyncCellTest : public ::testing::Test {
     // The board and the robot I/O up; with `preheat` both hotends at temperature first (the
     // mock's hotends have a short time constant so that this takes a fraction of a second).
     void boot(bool preheat = true) {
-        std::string tmpl = (std::filesystem::temp_directory_path() / "sync-XXXXXX").string();
-        dir_ = mkdtemp(tmpl.data());
         drivers::sim::MockGt2560Options mo;
         mo.time_scale = time_scale;
         mo.bootloader_s = 0.2;  // 10 ms real
@@ -152,7 +140,6 @@ class SyncCellTest : public ::testing::Test {
         if (board_.state() == drivers::DeviceState::active) board_.deactivate();
         server_.reset();
         mock_.reset();
-        if (!dir_.empty()) std::filesystem::remove_all(dir_);
     }
 
     // The robot reaches event `n`; at a barrier it waits for the release like FcBarrier. Events
@@ -178,6 +165,18 @@ class SyncCellTest : public ::testing::Test {
     void confirmed(std::int64_t sequence) {
         ASSERT_TRUE(eventually([&] { return engine_->status().last_confirmed >= sequence; }))
             << "last confirmed " << engine_->status().last_confirmed;
+    }
+
+    // Every input posted to the engine so far has been handled: a marker temperature report
+    // (the board's own reports cut off first) has come out of its queue behind them. For an
+    // engine that is done with temperatures (a fault, the end of a test).
+    void engine_handled_all_posted() {
+        board_.on_temperature(nullptr);
+        const double mark = -1000.0 - static_cast<double>(++markers_);
+        drivers::marlin::TemperatureReport marker;
+        marker.readings.push_back({"T0", mark, std::nullopt});
+        engine_->board_temperature(marker);
+        ASSERT_TRUE(eventually([&] { return engine_->status().pla_hotend_c == mark; }));
     }
 
     std::vector<std::string> executed_job() const {
@@ -225,7 +224,7 @@ class SyncCellTest : public ::testing::Test {
         void cut() { append(lines, ref.cut()); }
     };
 
-    std::filesystem::path dir_;
+    TempDir dir_{"sync"};  // before the devices: the board's port link in it outlives the mock
     std::unique_ptr<drivers::sim::MockGt2560> mock_;
     drivers::marlin::MarlinLink board_;
     std::unique_ptr<drivers::abb::RobotIoServer> server_;
@@ -234,6 +233,7 @@ class SyncCellTest : public ::testing::Test {
     drivers::ExtruderController extruder_{drivers::ExtruderConfig{}};
     std::unique_ptr<SyncEngine> engine_;
     std::size_t job_start_ = 0;
+    int markers_ = 0;
 
     std::mutex mu_;
     std::vector<EventDone> done_;

@@ -2,7 +2,10 @@
 // ExecStart pointed at the built fibrecelld, since the install paths do not exist here), they are
 // Type=notify with a watchdog, and the template unit gives each cell its own config, state and
 // socket. Skipped where systemd-analyze is not installed.
+#include "tests/support/temp_dir.hpp"
+
 #include <gmock/gmock.h>
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -42,10 +45,7 @@ class SystemdUnitTest : public ::testing::Test {
   protected:
     void SetUp() override {
         units_ = fs::path(FIBRECELL_BINARY_DIR) / "systemd";
-        dir_ = fs::temp_directory_path() / ("fibrecell-units-" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     // The unit with its ExecStart binary replaced by the built one, written as `name` in dir_.
     fs::path testable(const std::string& unit, const std::string& name) {
@@ -56,7 +56,8 @@ class SystemdUnitTest : public ::testing::Test {
         return dir_ / name;
     }
 
-    fs::path units_, dir_;
+    fs::path units_;
+    fibrecell::test::TempDir dir_{"units"};
 };
 
 }  // namespace

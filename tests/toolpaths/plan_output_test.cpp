@@ -3,6 +3,7 @@
 
 #include "planner/plan/preview_svg.hpp"
 #include "planner/plan/toolpaths_json.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include "planner/input_error.hpp"
 #include "planner/toolpaths/contour_zigzag.hpp"
@@ -24,15 +25,7 @@ namespace fs = std::filesystem;
 
 class PlanOutput : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fibrecell_plan_output_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    fs::path dir_;
+    fibrecell::test::TempDir dir_{"plan-output"};
 };
 
 std::size_t count(const std::string& text, const std::string& what) {

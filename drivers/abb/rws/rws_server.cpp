@@ -121,6 +121,10 @@ class Connection : public std::enable_shared_from_this<Connection> {
             return;
         }
         if (ec) {
+            if (ec == beast::error::timeout) {
+                std::lock_guard lock(server_.mu);
+                ++server_.stats.idle_closes;
+            }
             close();  // end of stream, idle timeout, reset, or the server stopping
             return;
         }

@@ -44,6 +44,7 @@ struct RwsServerStats {
     std::uint64_t digest_logins = 0;     // requests authenticated by digest (not by cookie)
     std::uint64_t sessions_opened = 0;
     std::uint32_t max_nc = 0;  // highest nonce count seen
+    std::uint64_t idle_closes = 0;  // connections closed after idle_timeout without a request
 };
 
 class RwsServer {
