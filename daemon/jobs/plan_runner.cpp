@@ -1,5 +1,6 @@
 #include "daemon/jobs/plan_runner.hpp"
 
+#include "config/thread_priority.hpp"
 #include "daemon/jobs/plan_job.hpp"
 #include "daemon/jobs/thread_pool.hpp"
 
@@ -67,7 +68,7 @@ void PlanRunner::stop() {
 }
 
 void PlanRunner::work() {
-    lower_thread_priority(options_.planner_nice);
+    config::lower_thread_priority(options_.planner_nice);
     for (;;) {
         std::int64_t id = 0;
         {

@@ -1,14 +1,9 @@
 #include "daemon/jobs/thread_pool.hpp"
 
-#include <spdlog/spdlog.h>
-
-#include <sys/resource.h>
-#include <unistd.h>
+#include "config/thread_priority.hpp"
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
-#include <cstring>
 #include <exception>
 
 namespace fibrecell::daemon::jobs {
@@ -25,23 +20,13 @@ struct ThreadPool::Batch {
     std::exception_ptr failure;
 };
 
-void lower_thread_priority(int nice) {
-    const auto self = static_cast<id_t>(::gettid());
-    errno = 0;
-    const int now = ::getpriority(PRIO_PROCESS, self);
-    if (errno != 0 || nice <= now) return;
-    if (::setpriority(PRIO_PROCESS, self, nice) != 0)
-        spdlog::warn("planner: cannot lower a planning thread's priority to nice {}: {}", nice,
-                     std::strerror(errno));
-}
-
 ThreadPool::ThreadPool(ThreadPoolOptions options) {
     const int n = options.threads > 0
                       ? options.threads
                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     for (int i = 0; i < n; ++i)
         threads_.emplace_back([this, nice = options.nice] {
-            lower_thread_priority(nice);
+            config::lower_thread_priority(nice);
             work();
         });
 }

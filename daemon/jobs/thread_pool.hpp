@@ -49,8 +49,4 @@ class ThreadPool final : public planner::Executor {
     std::vector<std::thread> threads_;
 };
 
-// Lowers the calling thread's priority to `nice` (Linux keeps one per thread and copies it to
-// the threads it starts). Never raises it; logs when it cannot.
-void lower_thread_priority(int nice);
-
 }  // namespace fibrecell::daemon::jobs

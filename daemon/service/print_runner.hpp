@@ -43,6 +43,7 @@ struct PrintRunnerOptions {
     std::chrono::milliseconds heartbeat_timeout{1000}; // real time: FcMain holds the robot after it
     std::chrono::milliseconds heater_timeout{std::chrono::minutes(30)};  // paused: heaters off
     std::chrono::milliseconds poll_period{100};
+    int realtime_priority = 20;  // SCHED_FIFO of the sync, serial and Modbus threads; 0: off
 };
 
 class PrintRunner {

@@ -2,6 +2,7 @@
 
 #include "config/base64.hpp"
 #include "config/logging.hpp"
+#include "config/thread_priority.hpp"
 #include "daemon/api/api_error.hpp"
 #include "daemon/api/params.hpp"
 #include "daemon/print/print_settings.hpp"
@@ -32,6 +33,7 @@ PrintRunnerOptions load_print_options(config::Section s) {
         ms(static_cast<long>(1000 * s.number("heartbeat_timeout_s", 1, 0.2, 60)));
     o.heater_timeout =
         ms(static_cast<long>(60000 * s.number("heater_timeout_min", 30, 0.01, 24 * 60)));
+    o.realtime_priority = s.integer("realtime_priority", 20, 0, 99);
     s.finish();
     return o;
 }
@@ -112,6 +114,8 @@ void Service::start() {
     register_methods();
     api_->start();
 
+    // Before the devices start their threads (config/thread_priority.hpp).
+    config::set_time_critical_priority(config_.print.realtime_priority);
     devices_ = std::make_unique<CellDevices>(config_.cell);
     printer_ = std::make_unique<PrintRunner>(*store_, *devices_, config_.cell, config_.print);
     printer_->on_progress([this](std::int64_t id, const json& progress) {

@@ -1,5 +1,7 @@
 #include "daemon/sync/reply_watcher.hpp"
 
+#include "config/thread_priority.hpp"
+
 namespace fibrecell::daemon::sync {
 namespace {
 
@@ -8,7 +10,10 @@ constexpr auto stop_check = std::chrono::milliseconds(20);
 
 }  // namespace
 
-ReplyWatcher::ReplyWatcher(Sink sink) : sink_(std::move(sink)), thread_([this] { run(); }) {}
+ReplyWatcher::ReplyWatcher(Sink sink) : sink_(std::move(sink)), thread_([this] {
+          config::make_thread_time_critical("sync.replies");
+          run();
+      }) {}
 
 ReplyWatcher::~ReplyWatcher() {
     {

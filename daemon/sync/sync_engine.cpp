@@ -1,5 +1,6 @@
 #include "daemon/sync/sync_engine.hpp"
 
+#include "config/thread_priority.hpp"
 #include "daemon/sync/event_processor.hpp"
 #include "daemon/sync/reply_watcher.hpp"
 
@@ -147,7 +148,10 @@ void SyncEngine::on_progress(std::function<void(const SyncProgress&)> f) {
 void SyncEngine::start() {
     if (impl_->started) return;  // once: a second begin() would prepare the board again
     impl_->started = true;
-    impl_->worker = std::thread([this] { impl_->run(); });
+    impl_->worker = std::thread([this] {
+        config::make_thread_time_critical("sync.engine");
+        impl_->run();
+    });
 }
 
 void SyncEngine::stop() {

@@ -1,5 +1,7 @@
 #include "drivers/marlin/marlin_link.hpp"
 
+#include "config/thread_priority.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <boost/asio/executor_work_guard.hpp>
@@ -52,7 +54,10 @@ struct MarlinLink::Impl {
     std::function<void()> written_cb;
 
     Impl() {
-        thread = std::thread([this] { io.run(); });
+        thread = std::thread([this] {
+            config::make_thread_time_critical("marlin.io");
+            io.run();
+        });
     }
     ~Impl() {
         asio::post(io, [this] { shut_port(); });

@@ -1,5 +1,6 @@
 #include "drivers/sim/mock_gt2560.hpp"
 
+#include "config/thread_priority.hpp"
 #include "drivers/marlin/marlin_line.hpp"
 
 #include <fcntl.h>
@@ -657,7 +658,10 @@ MockGt2560::MockGt2560(MockGt2560Options options) : impl_(std::make_unique<Impl>
     for (auto& h : impl_->heaters) h.temp_c = impl_->o.ambient_c;
     impl_->open_pty();
     if (!impl_->o.reset_on_open) impl_->reboot(false, 0);
-    impl_->thread = std::thread([this] { impl_->run(); });
+    impl_->thread = std::thread([this] {
+        config::make_thread_time_critical("sim.board");
+        impl_->run();
+    });
 }
 
 MockGt2560::~MockGt2560() {

@@ -1,5 +1,6 @@
 #include "drivers/abb/modbus/robot_io_link.hpp"
 
+#include "config/thread_priority.hpp"
 #include "drivers/abb/modbus/modbus_read_plan.hpp"
 
 #include <modbus.h>
@@ -543,7 +544,10 @@ void RobotIoLink::start() {
         std::lock_guard lock(m.mu);
         m.stop_requested = false;
     }
-    m.thread = std::thread([&m] { m.run(); });
+    m.thread = std::thread([&m] {
+        config::make_thread_time_critical("robot_io.poll");
+        m.run();
+    });
 }
 
 void RobotIoLink::stop() {

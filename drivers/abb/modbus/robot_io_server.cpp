@@ -1,5 +1,6 @@
 #include "drivers/abb/modbus/robot_io_server.hpp"
 
+#include "config/thread_priority.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
 
 #include <arpa/inet.h>
@@ -158,7 +159,10 @@ struct RobotIoServer::Impl {
             throw;
         }
         next_hb_toggle = Clock::now() + opt.robot_heartbeat_period;
-        thread = std::thread([this] { run(); });
+        thread = std::thread([this] {
+            config::make_thread_time_critical("sim.robot_io");
+            run();
+        });
     }
 
     ~Impl() {

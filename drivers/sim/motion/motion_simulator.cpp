@@ -1,5 +1,6 @@
 #include "drivers/sim/motion/motion_simulator.hpp"
 
+#include "config/thread_priority.hpp"
 #include "drivers/sim/motion/motion_plan.hpp"
 
 #include <algorithm>
@@ -102,7 +103,10 @@ void MotionSimulator::Impl::run() {
 
 MotionSimulator::MotionSimulator(const SimClock& clock, MotionOptions options)
     : impl_(std::make_unique<Impl>(clock, options)) {
-    impl_->thread = std::thread([this] { impl_->run(); });
+    impl_->thread = std::thread([this] {
+        config::make_thread_time_critical("sim.motion");
+        impl_->run();
+    });
 }
 
 MotionSimulator::~MotionSimulator() {

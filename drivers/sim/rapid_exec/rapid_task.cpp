@@ -3,6 +3,7 @@
 // changes, data access and status.
 #include "drivers/sim/rapid_exec/task_impl.hpp"
 
+#include "config/thread_priority.hpp"
 #include "drivers/abb/rapid/names.hpp"
 
 #include <algorithm>
@@ -129,7 +130,10 @@ void RapidTask::start() {
     if (impl_->task_stopmove.exchange(false) && !impl_->program_stopmove)
         impl_->motion.start_move();
     const std::lock_guard g(impl_->thread_mu);
-    if (!impl_->thread.joinable()) impl_->thread = std::thread([this] { impl_->thread_main(); });
+    if (!impl_->thread.joinable()) impl_->thread = std::thread([this] {
+            config::make_thread_time_critical("sim.rapid_task");
+            impl_->thread_main();
+        });
 }
 
 void RapidTask::stop() {
