@@ -13,6 +13,8 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <sys/stat.h>
+
 #include <csignal>
 #include <iostream>
 
@@ -66,6 +68,8 @@ int main(int argc, char** argv) {
         return 0;
     }
     fibrecell::config::setup_logging(config.cell.log_level);
+    // Job folders 0750, files 0640, whoever starts the service (the unit's UMask says the same).
+    ::umask(027);
     std::signal(SIGPIPE, SIG_IGN);  // a client that went away is an error on its socket, not a kill
 
     boost::asio::io_context io;

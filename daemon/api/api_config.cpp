@@ -110,6 +110,10 @@ ApiConfig load_api_config(config::Section s) {
     c.max_request_bytes = static_cast<std::size_t>(
         s.integer("max_request_bytes", static_cast<int>(c.max_request_bytes), 1024, 1 << 30));
     c.max_clients = s.integer("max_clients", c.max_clients, 1, 10000);
+    c.reserved_control_clients =
+        s.integer("reserved_control_clients", c.reserved_control_clients, 0, 100);
+    c.idle_timeout = std::chrono::milliseconds(
+        static_cast<long>(1000 * s.number("idle_timeout_s", 300, 0, 86400)));
     c.progress_rate_hz = s.number("progress_rate_hz", c.progress_rate_hz, 0.0, 100.0, true);
     c.max_client_queue_bytes = static_cast<std::size_t>(s.integer(
         "max_client_queue_bytes", static_cast<int>(c.max_client_queue_bytes), 64 << 10, 1 << 30));

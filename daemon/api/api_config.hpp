@@ -33,6 +33,14 @@ struct ApiConfig {
     ApiTcpConfig tcp;
     std::size_t max_request_bytes = std::size_t{16} << 20;  // one request line; jobs carry files
     int max_clients = 64;                                   // connections at once, both transports
+    // Connections admitted beyond max_clients that may call only the control methods
+    // (ApiServer::add_control_method: status, pause, abort, estop): a few idle or hostile clients
+    // never take those from the operator.
+    int reserved_control_clients = 4;
+    // A connection that sends no request for this long and subscribes to nothing is closed
+    // (0: never). Connections in the reserved capacity get at most control_idle_timeout.
+    std::chrono::milliseconds idle_timeout{300000};
+    std::chrono::milliseconds control_idle_timeout{10000};
     double progress_rate_hz = 2.0;  // latest-only events per topic per client, at most this often
     // Outgoing bytes a client may leave unread before it is disconnected (a slow subscriber
     // never holds the service back). A single message larger than this still goes out.

@@ -35,15 +35,24 @@ void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket
     auto session =
         std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer));
     core->sessions[id] = session;
-    if (core->sessions.size() > static_cast<std::size_t>(core->config.max_clients)) {
+    const auto max = static_cast<std::size_t>(core->config.max_clients);
+    const auto reserved = static_cast<std::size_t>(core->config.reserved_control_clients);
+    if (core->sessions.size() > max + reserved) {
         core->counters.refused_full++;
-        spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}", id,
-                     session->peer(), core->config.max_clients);
+        spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}+{}", id,
+                     session->peer(), max, reserved);
         session->refuse(error_response(nullptr, errc::unavailable,
                                        "unavailable: fibrecelld serves at most " +
-                                           std::to_string(core->config.max_clients) +
+                                           std::to_string(max) +
                                            " clients at once (api.max_clients)"));
         return;
+    }
+    if (core->sessions.size() > max) {
+        core->counters.control_only++;
+        session->restrict_to_control();
+        spdlog::warn("api.client_control_only client={} peer={}: {} clients connected, this one "
+                     "may only call the control methods",
+                     id, session->peer(), max);
     }
     spdlog::info("api.client_connected client={} peer={}", id, session->peer());
     session->start();
@@ -194,6 +203,10 @@ void ApiServer::add_async_method(std::string name, AsyncHandler handler) {
     impl_->core->methods.add_async(std::move(name), std::move(handler));
 }
 
+void ApiServer::add_control_method(const std::string& name) {
+    impl_->core->methods.mark_control(name);
+}
+
 void ApiServer::start() {
     if (impl_->started) throw ApiStartError("the API server is already started");
     const auto& core = impl_->core;
@@ -245,6 +258,9 @@ void ApiServer::update_limits(const ApiConfig& config) {
         core->config.tcp.auth_timeout = config.tcp.auth_timeout;
         core->config.max_request_bytes = config.max_request_bytes;
         core->config.max_clients = config.max_clients;
+        core->config.reserved_control_clients = config.reserved_control_clients;
+        core->config.idle_timeout = config.idle_timeout;
+        core->config.control_idle_timeout = config.control_idle_timeout;
         core->config.max_client_queue_bytes = config.max_client_queue_bytes;
         core->config.progress_rate_hz = config.progress_rate_hz;
         const auto interval =
@@ -274,6 +290,8 @@ ApiServerStats ApiServer::stats() const {
     s.notifications_coalesced = c.notifications_coalesced.load();
     s.dropped_slow = c.dropped_slow.load();
     s.refused_full = c.refused_full.load();
+    s.control_only = c.control_only.load();
+    s.closed_idle = c.closed_idle.load();
     s.oversized = c.oversized.load();
     s.auth_failures = c.auth_failures.load();
     return s;

@@ -42,7 +42,9 @@ struct ApiServerStats {
     std::uint64_t notifications_sent = 0;       // notification lines queued to clients
     std::uint64_t notifications_coalesced = 0;  // latest-only events replaced before sending
     std::uint64_t dropped_slow = 0;             // clients disconnected for an overfull queue
-    std::uint64_t refused_full = 0;             // connections refused at api.max_clients
+    std::uint64_t refused_full = 0;             // connections refused (max + reserved full)
+    std::uint64_t control_only = 0;             // admitted into the reserved control capacity
+    std::uint64_t closed_idle = 0;              // closed after api.idle_timeout_s
     std::uint64_t oversized = 0;                // request lines above api.max_request_bytes
     std::uint64_t auth_failures = 0;            // wrong token or no server.auth in time
 };
@@ -56,6 +58,9 @@ class ApiServer {
 
     void add_method(std::string name, SyncHandler handler);
     void add_async_method(std::string name, AsyncHandler handler);
+    // A method the operator must always reach (status, pause, abort, estop): callable from the
+    // reserved capacity beyond api.max_clients. Register it first.
+    void add_control_method(const std::string& name);
 
     // Binds the Unix socket (a stale file from a dead process is replaced; a live one is
     // "another fibrecelld is listening on <path>") with its mode and group, and TCP when enabled;

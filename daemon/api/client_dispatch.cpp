@@ -123,6 +123,12 @@ void ClientSession::dispatch(nlohmann::json&& element, const std::shared_ptr<Pen
             authenticate(request, responder);
             return;
         }
+        if (control_only_ && !core_->methods.is_control(request.method))
+            throw ApiError::unavailable("unavailable: fibrecelld serves at most " +
+                                        std::to_string(core_->config.max_clients) +
+                                        " clients at once (api.max_clients); this connection may "
+                                        "only call " +
+                                        core_->methods.control_names());
         if (!authenticated_)
             throw ApiError::unauthorized(
                 "unauthorized: the first call on a TCP connection must be server.auth "
@@ -153,7 +159,15 @@ void ClientSession::authenticate(const RpcRequest& request, const Responder& res
     const std::string token =
         transport_ == Transport::tcp ? p.string("token") : p.string_opt("token").value_or("");
     p.finish();
+    // After a wrong token nothing on this connection is believed: not the next element of the
+    // same batch either, or a batch of guesses would get round one try per connection.
+    if (auth_failed_) {
+        responder.error(errc::unauthorized,
+                        "unauthorized: this connection already gave a wrong token; reconnect");
+        return;
+    }
     if (transport_ == Transport::tcp && !same_token(token, core_->config.tcp.token)) {
+        auth_failed_ = true;
         core_->counters.auth_failures++;
         spdlog::warn("api.auth_failed client={} peer={}", id_, peer_);
         responder.error(errc::unauthorized, "unauthorized: wrong token");

@@ -33,6 +33,7 @@ ClientSession::ClientSession(std::shared_ptr<ServerCore> core, Socket socket, st
       gate_(core_->strand, interval_of(core_->config.progress_rate_hz),
             [this](const Line& line) { send_notification(line); }),
       auth_timer_(core_->strand),
+      idle_timer_(core_->strand),
       drain_timer_(core_->strand) {}
 
 ClientSession::~ClientSession() = default;
@@ -51,7 +52,31 @@ void ClientSession::start() {
             self->close_after_flush();
         });
     }
+    arm_idle_timer();
     read_more();
+}
+
+void ClientSession::arm_idle_timer() {
+    auto timeout = core_->config.idle_timeout;
+    if (control_only_ && (timeout.count() == 0 || timeout > core_->config.control_idle_timeout))
+        timeout = core_->config.control_idle_timeout;
+    if (timeout.count() == 0) return;
+    idle_timer_.expires_after(timeout);
+    idle_timer_.async_wait([self = shared_from_this(), timeout](const boost::system::error_code& ec) {
+        if (ec || self->closing_) return;
+        // A subscriber is waiting for events, not idle (a slow one meets the queue limit).
+        if (!self->topics_.empty() && !self->control_only_) {
+            self->arm_idle_timer();  // idle again once it unsubscribes
+            return;
+        }
+        self->core_->counters.closed_idle++;
+        spdlog::info("api.client_idle client={} peer={}: no request for {} ms; closed", self->id_,
+                     self->peer_, timeout.count());
+        self->send(error_response(nullptr, errc::unavailable,
+                                  "unavailable: no request for " + std::to_string(timeout.count()) +
+                                      " ms (api.idle_timeout_s); closing the connection"));
+        self->close_after_flush();
+    });
 }
 
 void ClientSession::refuse(const nlohmann::json& error_response) {
@@ -112,6 +137,7 @@ void ClientSession::process_lines() {
             return;
         }
         handle_line(line);
+        arm_idle_timer();  // cancels the pending wait
         start = nl + 1;
     }
     if (closed_ || closing_) return;
@@ -202,6 +228,7 @@ void ClientSession::close_after_flush() {
     closing_ = true;
     gate_.cancel();
     auth_timer_.cancel();
+    idle_timer_.cancel();
     drain_timer_.expires_after(kDrainTime);
     drain_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
         if (!ec) self->close("closed after an error");
@@ -225,6 +252,7 @@ void ClientSession::close(const std::string& reason) {
     closing_ = true;
     gate_.cancel();
     auth_timer_.cancel();
+    idle_timer_.cancel();
     drain_timer_.cancel();
     boost::system::error_code ignored;
     socket_.shutdown(Socket::shutdown_both, ignored);

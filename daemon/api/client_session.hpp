@@ -35,6 +35,8 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     ~ClientSession();
 
     void start();
+    // Admitted into the reserved capacity: only control methods, and a short idle timeout.
+    void restrict_to_control() { control_only_ = true; }
     // Answers `error_response` once and closes (the server is full).
     void refuse(const nlohmann::json& error_response);
     // A published event: sent if this client subscribed to its topic.
@@ -82,6 +84,7 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     void on_write(const boost::system::error_code& ec);
     void close_after_flush();
     void finish_closing();
+    void arm_idle_timer();  // at the start and after every request line
 
     std::shared_ptr<ServerCore> core_;
     Socket socket_;
@@ -102,11 +105,14 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     bool writing_ = false;
 
     bool authenticated_;
+    bool auth_failed_ = false;  // one try per connection, batched or not
+    bool control_only_ = false;
     bool closing_ = false;  // no more requests: flush, half-close, drain the input, close
     bool closed_ = false;
     std::set<std::string, std::less<>> topics_;
     LatestOnlyGate gate_;
     boost::asio::steady_timer auth_timer_;
+    boost::asio::steady_timer idle_timer_;
     boost::asio::steady_timer drain_timer_;
 };
 

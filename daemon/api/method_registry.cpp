@@ -25,6 +25,21 @@ void MethodRegistry::add_async(std::string name, AsyncHandler handler) {
         throw std::logic_error("api method " + name + ": registered twice");
 }
 
+void MethodRegistry::mark_control(const std::string& name) {
+    if (!handlers_.contains(name)) throw std::logic_error("api method " + name + ": not registered");
+    control_.insert(name);
+}
+
+bool MethodRegistry::is_control(const std::string& name) const {
+    return name == "server.auth" || control_.contains(name);
+}
+
+std::string MethodRegistry::control_names() const {
+    std::string s;
+    for (const auto& name : control_) s += (s.empty() ? "" : ", ") + name;
+    return s.empty() ? "server.auth" : s;
+}
+
 const AsyncHandler* MethodRegistry::find(const std::string& name) const {
     const auto it = handlers_.find(name);
     return it == handlers_.end() ? nullptr : &it->second;

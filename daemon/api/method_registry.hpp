@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 
 namespace fibrecell::api {
@@ -26,10 +27,15 @@ class MethodRegistry {
     void add_async(std::string name, AsyncHandler handler);
 
     const AsyncHandler* find(const std::string& name) const;  // nullptr when unknown
+    // Control methods stay callable from the reserved capacity (ApiConfig::reserved_control_clients).
+    void mark_control(const std::string& name);
+    bool is_control(const std::string& name) const;
+    std::string control_names() const;  // "cell.status, job.pause, ..." for messages
     static bool reserved(const std::string& name);
 
   private:
     std::map<std::string, AsyncHandler, std::less<>> handlers_;
+    std::set<std::string, std::less<>> control_;
 };
 
 }  // namespace fibrecell::api

@@ -33,6 +33,8 @@ struct ServerCounters {
     std::atomic<std::uint64_t> notifications_coalesced{0};
     std::atomic<std::uint64_t> dropped_slow{0};
     std::atomic<std::uint64_t> refused_full{0};
+    std::atomic<std::uint64_t> control_only{0};
+    std::atomic<std::uint64_t> closed_idle{0};
     std::atomic<std::uint64_t> oversized{0};
     std::atomic<std::uint64_t> auth_failures{0};
 };

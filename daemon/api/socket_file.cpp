@@ -1,5 +1,6 @@
 #include "daemon/api/socket_file.hpp"
 
+#include "config/directory_owner.hpp"
 #include "daemon/api/api_server.hpp"
 
 #include <grp.h>
@@ -49,6 +50,14 @@ void prepare_socket_path(const std::string& path) {
     if (!dir.empty() && !std::filesystem::is_directory(dir, fs_ec))
         throw ApiStartError("cannot create socket " + path + ": directory " + dir.string() +
                             " does not exist");
+    // Whoever may write to the directory may swap the socket for their own server.
+    if (!dir.empty()) {
+        try {
+            config::check_private_directory(dir, "socket directory");
+        } catch (const config::DirectoryRefused& e) {
+            throw ApiStartError(e.what());
+        }
+    }
     struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) {
         if (errno == ENOENT) return;

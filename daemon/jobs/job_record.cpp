@@ -25,7 +25,8 @@ nlohmann::json to_json(const JobRecord& r) {
             {"updated_at", r.updated_at},
             {"plan_attempts", r.plan_attempts},
             {"start_when_planned", r.start_when_planned},
-            {"last_confirmed_event", r.last_confirmed_event}};
+            {"last_confirmed_event", r.last_confirmed_event},
+            {"journal_lost", r.journal_lost}};
 }
 
 JobRecord record_from_json(const nlohmann::json& j) {
@@ -49,6 +50,7 @@ JobRecord record_from_json(const nlohmann::json& j) {
     r.plan_attempts = field<int>(j, "plan_attempts");
     r.start_when_planned = field<bool>(j, "start_when_planned");
     r.last_confirmed_event = field<std::int64_t>(j, "last_confirmed_event");
+    r.journal_lost = j.contains("journal_lost") && field<bool>(j, "journal_lost");
     return r;
 }
 

@@ -2,7 +2,8 @@
 // What the service knows about one job, and its state.json (format fibrecell.job/1):
 //   {"format": "fibrecell.job/1", "id": 12, "name": "loop", "state": "printing", "reason": "",
 //    "submitted_at": "2026-12-01T16:30:00Z", "updated_at": "...", "plan_attempts": 1,
-//    "start_when_planned": false, "last_confirmed_event": 0}
+//    "start_when_planned": false, "last_confirmed_event": 0, "journal_lost": false}
+// (journal_lost may be absent: state files written before it read as false)
 
 #include "daemon/jobs/job_state.hpp"
 
@@ -31,6 +32,7 @@ struct JobRecord {
     int plan_attempts = 0;                  // planning runs begun (a restart during one retries)
     bool start_when_planned = false;        // `fibrecell submit --start`
     std::int64_t last_confirmed_event = 0;  // from the journal; 0: nothing printed
+    bool journal_lost = false;  // it had printed and its journal was missing: resume needs a word
     JobProgress progress;
 };
 

@@ -17,6 +17,15 @@ namespace fs = std::filesystem;
 
 constexpr const char* incoming_prefix = ".incoming-";
 constexpr const char* removed_prefix = ".removed-";
+constexpr const char* lost_journal_text =
+    "; its journal.jsonl is missing: resume needs the operator's word (--journal-lost)";
+
+// The job's print had begun, so its journal should be there (it is made before the print starts).
+bool had_printed(const JobRecord& r) {
+    return r.state == JobState::printing || r.state == JobState::pausing ||
+           r.state == JobState::paused ||
+           (r.state == JobState::interrupted && r.last_confirmed_event > 0);
+}
 
 // A job folder's name: a positive decimal id without leading zeros.
 std::optional<std::int64_t> folder_id(const std::string& name) {
@@ -144,6 +153,7 @@ LoadReport JobStore::load_all() {
 
             Entry e;
             e.record.id = *id;
+            bool lost_now = false;  // it had printed, and its journal is gone
             try {
                 const auto text = read_text(dir / "state.json");
                 const auto j = nlohmann::json::parse(text, nullptr, false);
@@ -160,6 +170,7 @@ LoadReport JobStore::load_all() {
                 }
                 e.record.last_confirmed_event =
                     std::max(e.record.last_confirmed_event, js.last_confirmed);
+                lost_now = !fs::exists(journal) && had_printed(e.record);
                 if (fs::exists(journal)) e.journal = std::make_shared<JobJournal>(journal, js);
             } catch (const std::exception& ex) {
                 e.record.state = JobState::failed;
@@ -175,6 +186,11 @@ LoadReport JobStore::load_all() {
                 continue;  // state.json stays as found, for whoever looks into it
             }
             JobRecord& r = e.record;
+            const std::string lost = lost_now && !r.journal_lost ? lost_journal_text : "";
+            if (lost_now) {
+                r.journal_lost = true;
+                report.warnings.push_back("job " + std::to_string(r.id) + lost_journal_text);
+            }
             if (r.state == JobState::planning) {
                 if (r.plan_attempts > options_.plan_retries) {
                     changed.push_back(change(e, JobState::failed,
@@ -190,8 +206,10 @@ LoadReport JobStore::load_all() {
                 changed.push_back(change(
                     e, JobState::interrupted,
                     "the service restarted while the job was " + std::string(to_string(r.state)) +
-                        "; last confirmed event " + std::to_string(r.last_confirmed_event)));
+                        "; last confirmed event " + std::to_string(r.last_confirmed_event) + lost));
                 report.interrupted.push_back(r.id);
+            } else if (!lost.empty()) {
+                changed.push_back(change(e, r.state, r.reason + lost));  // the flag on the disk
             }
             report.loaded.push_back(r.id);
             jobs_.insert_or_assign(r.id, std::move(e));
@@ -294,6 +312,14 @@ JobRecord JobStore::request(std::int64_t id, JobAction action) {
         const std::string refused = refusal(id, e.record.state, action);
         if (!refused.empty()) throw JobConflict(refused);
         if (action == JobAction::start || action == JobAction::resume) check_cell_free(id);
+        if (action == JobAction::resume && e.record.journal_lost)
+            throw JobConflict(
+                "job " + std::to_string(id) + " cannot resume: its journal.jsonl is missing, so "
+                "which events printed is known only up to event " +
+                std::to_string(e.record.last_confirmed_event) +
+                " (state.json, saved at every layer); the events after it may print again. "
+                "Look at the part, then resume with --journal-lost (job.resume journal_lost: "
+                "true) to go on after that event, or abort");
         if (action == JobAction::remove) {
             result = e.record;
             remove_folder(id);
@@ -383,6 +409,25 @@ std::shared_ptr<JobJournal> JobStore::journal(std::int64_t id) {
     Entry& e = entry(id);
     if (!e.journal) e.journal = std::make_shared<JobJournal>(job_dir(id) / "journal.jsonl");
     return e.journal;
+}
+
+void JobStore::confirm_progress(std::int64_t id, std::int64_t last_confirmed_event) {
+    std::lock_guard lock(mu_);
+    Entry& e = entry(id);
+    if (last_confirmed_event <= e.record.last_confirmed_event) return;
+    e.record.last_confirmed_event = last_confirmed_event;
+    persist(e.record);
+}
+
+void JobStore::accept_lost_journal(std::int64_t id) {
+    std::lock_guard lock(mu_);
+    Entry& e = entry(id);
+    if (!e.record.journal_lost) return;
+    e.record.journal_lost = false;
+    persist(e.record);
+    spdlog::warn("job.journal_lost_accepted job {}: resumes after event {} (state.json) on the "
+                 "operator's word",
+                 id, e.record.last_confirmed_event);
 }
 
 void JobStore::remove_folder(std::int64_t id) {

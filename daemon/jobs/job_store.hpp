@@ -99,6 +99,15 @@ class JobStore {
     // The job's journal, opened on first use (printing). Throws JobNotFound.
     std::shared_ptr<JobJournal> journal(std::int64_t id);
 
+    // The print's progress into state.json (the print runner calls it at every layer): a job whose
+    // journal is lost still knows, to the layer, how far it got.
+    void confirm_progress(std::int64_t id, std::int64_t last_confirmed_event);
+
+    // A job that had printed and whose journal.jsonl was missing at start-up refuses resume
+    // (its part is on the bed; how far it got is known only to the last layer state.json saw):
+    // the operator's explicit word lets it resume after state.json's last confirmed event.
+    void accept_lost_journal(std::int64_t id);
+
     std::filesystem::path job_dir(std::int64_t id) const;
     std::filesystem::path plan_dir(std::int64_t id) const { return job_dir(id) / "plan"; }
     std::filesystem::path input_dir(std::int64_t id) const { return job_dir(id) / "input"; }

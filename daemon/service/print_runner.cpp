@@ -288,10 +288,12 @@ void PrintRunner::start_job(std::int64_t id) {
     a->session = std::make_unique<print::PrintSession>(a->plan.program, a->plan.chunks,
                                                        devices_.links(), po);
     Active* raw = a.get();
-    a->session->on_event_done([raw](const sync::EventDone& d) {
+    a->session->on_event_done([this, raw, id](const sync::EventDone& d) {
         // On the engine's thread, in order: on the disk before the next event is taken.
         raw->journal->confirmed({d.sequence, d.kind, d.layer, d.path});
         raw->last_confirmed = d.sequence;
+        // state.json follows at every layer: a lost journal still says how far the print got.
+        if (d.layer >= 0 && d.layer != raw->layer) store_.confirm_progress(id, d.sequence);
         if (d.layer >= 0) raw->layer = d.layer;
     });
     devices_.set_print(a->session.get());

@@ -95,6 +95,12 @@ Service::Service(boost::asio::io_context& io, ServiceConfig config)
 Service::~Service() { stop(); }
 
 void Service::start() {
+    // The state directory is this service's alone: private, and locked against a second one.
+    config::ensure_private_directory(config_.cell.state_dir, "state directory");
+    if (!state_lock_)
+        state_lock_ = std::make_unique<config::DirectoryLock>(
+            config_.cell.state_dir, "fibrecelld pid " + std::to_string(::getpid()) +
+                                        " (socket " + config_.api.socket_path + ")");
     store_ = std::make_unique<jobs::JobStore>(jobs::JobStoreOptions{
         .state_dir = config_.cell.state_dir,
         .max_queued = config_.jobs.max_queued,
@@ -353,7 +359,15 @@ void Service::register_methods() {
     });
 
     api_->add_method("job.resume", [this](const json& params, const CallContext& ctx) {
-        const std::int64_t id = job_param(params, ctx, true);
+        // journal_lost: true is the operator's word for a job whose journal is gone.
+        json rest = params;
+        bool journal_lost = false;
+        if (rest.is_object() && rest.contains("journal_lost")) {
+            journal_lost = ParamReader(ctx.method, params).boolean_or("journal_lost", false);
+            rest.erase("journal_lost");
+        }
+        const std::int64_t id = job_param(rest, ctx, true);
+        if (journal_lost) as_api([&] { store_->accept_lost_journal(id); });
         const JobState before = as_api([&] { return store_->get(id); }).state;
         const JobRecord r = as_api([&] { return store_->request(id, JobAction::resume); });
         if (before == JobState::interrupted)
@@ -401,6 +415,11 @@ void Service::register_methods() {
         return json{{"estop", true},
                     {"note", "M112 sent and robot abort requested; not a safety function"}};
     });
+
+    // What the operator must reach even when api.max_clients connections are taken.
+    for (const char* m : {"server.info", "cell.status", "job.get", "job.pause", "job.abort",
+                          "cell.estop"})
+        api_->add_control_method(m);
 }
 
 }  // namespace fibrecell::daemon::service

@@ -4,6 +4,7 @@
 // the caller's io_context except planning and printing, which have their own threads; a bad request
 // is refused and changes nothing, a failed job never takes the service or another job down.
 
+#include "config/directory_owner.hpp"
 #include "daemon/api/api_config.hpp"
 #include "daemon/api/api_server.hpp"
 #include "daemon/cell/cell_config.hpp"
@@ -69,6 +70,7 @@ class Service {
 
     boost::asio::io_context& io_;
     ServiceConfig config_;
+    std::unique_ptr<config::DirectoryLock> state_lock_;  // held while the service runs
     std::unique_ptr<api::ApiServer> api_;
     std::unique_ptr<jobs::JobStore> store_;
     std::unique_ptr<CellDevices> devices_;

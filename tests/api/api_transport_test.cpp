@@ -54,6 +54,8 @@ class ApiTransportTest : public ::testing::Test {
         server_->add_method("whoami", [](const json&, const CallContext& ctx) {
             return json{{"tcp", ctx.transport == Transport::tcp}, {"peer", ctx.peer}};
         });
+        server_->add_method("halt", [](const json&, const CallContext&) { return json{{"halted", true}}; });
+        server_->add_control_method("halt");  // as the service marks pause, abort, estop
         server_->start();
         if (run_io) io_thread_ = std::thread([this] { io_.run(); });
     }
@@ -256,6 +258,32 @@ TEST_F(ApiTransportTest, TcpWithAWrongTokenIsRefusedAndClosed) {
     EXPECT_EQ(server_->stats().auth_failures, 2u);
 }
 
+TEST_F(ApiTransportTest, ABatchOfGuessesGetsOneTryToo) {
+    // A batch is one message: its elements must not each get the try a connection gets.
+    config_.tcp.enabled = true;
+    start();
+    auto c = ApiClient::connect(tcp(""));
+    std::string batch = "[";
+    for (int i = 0; i < 50; ++i)
+        batch += R"({"jsonrpc":"2.0","id":)" + std::to_string(i) +
+                 R"(,"method":"server.auth","params":{"token":"guess-)" + std::to_string(i) +
+                 R"("}},)";
+    batch += R"({"jsonrpc":"2.0","id":50,"method":"server.auth","params":{"token":")" +
+             std::string(kToken) + R"("}},)";
+    batch += R"({"jsonrpc":"2.0","id":51,"method":"whoami"}])";
+    c.send_line(batch);
+    const auto m = c.read_message(5s);
+    ASSERT_TRUE(m && m->is_array()) << (m ? m->dump() : "no answer");
+    ASSERT_EQ(m->size(), 52u);
+    const auto error_of = [](const json& answer) { return answer.value("error", json::object()); };
+    for (const json& answer : *m)
+        EXPECT_EQ(error_of(answer).value("code", 0), errc::unauthorized) << answer.dump();
+    EXPECT_EQ(error_of((*m)[50]).value("message", ""),
+              "unauthorized: this connection already gave a wrong token; reconnect");
+    EXPECT_TRUE(c.wait_closed(5s));
+    EXPECT_EQ(server_->stats().auth_failures, 1u);  // the first guess; the others never compared
+}
+
 TEST_F(ApiTransportTest, TcpConnectionThatNeverAuthenticatesIsClosed) {
     config_.tcp.enabled = true;
     config_.tcp.auth_timeout = 100ms;
@@ -292,6 +320,63 @@ TEST_F(ApiTransportTest, StopClosesClientsAndRemovesTheSocket) {
               "fibrecelld is not running (no socket at " + config_.socket_path + ")");
 }
 
+TEST_F(ApiTransportTest, AFullServerKeepsRoomForControlCalls) {
+    config_.max_clients = 3;
+    config_.reserved_control_clients = 2;
+    start();
+    std::vector<ApiClient> idle;  // they took every ordinary place, and do nothing
+    for (int i = 0; i < 3; ++i) {
+        idle.push_back(ApiClient::connect({.socket_path = config_.socket_path}));
+        idle.back().call("echo");
+    }
+    auto operator_ = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(operator_.call("halt"), (json{{"halted", true}}));
+    try {
+        operator_.call("echo");
+        FAIL() << "a connection in the reserve called an ordinary method";
+    } catch (const ApiCallError& e) {
+        EXPECT_EQ(e.code(), errc::unavailable);
+        EXPECT_STREQ(e.what(), "unavailable: fibrecelld serves at most 3 clients at once "
+                               "(api.max_clients); this connection may only call halt");
+    }
+    auto second = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(second.call("halt"), (json{{"halted", true}}));
+    auto beyond = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_THROW(beyond.call("halt"), ApiCallError);  // max + reserved are taken
+    EXPECT_EQ(server_->stats().control_only, 2u);
+    EXPECT_EQ(server_->stats().refused_full, 1u);
+}
+
+TEST_F(ApiTransportTest, AnIdleConnectionIsClosedASubscriberIsNot) {
+    config_.idle_timeout = 300ms;
+    start();
+    auto idle = ApiClient::connect({.socket_path = config_.socket_path});
+    auto subscriber = ApiClient::connect({.socket_path = config_.socket_path});
+    subscriber.call("subscribe", {{"topics", {"cell"}}});
+    idle.call("echo");
+    const auto m = idle.read_message(10s);
+    ASSERT_TRUE(m) << "the idle connection was not told";
+    EXPECT_EQ((*m)["error"]["code"], errc::unavailable);
+    EXPECT_EQ((*m)["error"]["message"],
+              "unavailable: no request for 300 ms (api.idle_timeout_s); closing the connection");
+    EXPECT_TRUE(idle.wait_closed(5s));
+    EXPECT_EQ(server_->stats().closed_idle, 1u);
+    // The subscriber, silent as long, is still served.
+    EXPECT_EQ(subscriber.call("echo", {{"x", 1}}), (json{{"x", 1}}));
+}
+
+TEST_F(ApiTransportTest, AControlConnectionIdlesOutSooner) {
+    config_.max_clients = 1;
+    config_.control_idle_timeout = 200ms;
+    start();
+    auto ordinary = ApiClient::connect({.socket_path = config_.socket_path});
+    ordinary.call("echo");
+    auto control = ApiClient::connect({.socket_path = config_.socket_path});
+    control.call("halt");
+    EXPECT_TRUE(control.wait_closed(10s));  // its place is free again for the next operator
+    EXPECT_EQ(ordinary.call("echo", {{"x", 1}}), (json{{"x", 1}}));  // 300 s: still open
+}
+
 TEST_F(ApiTransportTest, TcpIsOffByDefault) {
     start();
     EXPECT_EQ(server_->tcp_port(), 0);
@@ -299,6 +384,7 @@ TEST_F(ApiTransportTest, TcpIsOffByDefault) {
 
 TEST_F(ApiTransportTest, ClientsAboveTheLimitAreRefusedWithUnavailable) {
     config_.max_clients = 1;
+    config_.reserved_control_clients = 0;
     start();
     auto first = ApiClient::connect({.socket_path = config_.socket_path});
     EXPECT_EQ(first.call("echo", {{"n", 1}}), (json{{"n", 1}}));

@@ -161,6 +161,7 @@ TEST_F(JobStoreTest, StoreWalksEveryUserActionFromEveryState) {
             const std::int64_t id = reopened->submit(input_).id;
             if (s == JobState::interrupted) {  // only a restart leads there
                 drive(*reopened, id, JobState::printing);
+                reopened->journal(id);  // as the print runner opens it before the print starts
                 reopened.emplace(o);
                 reopened->load_all();
             } else {
@@ -354,6 +355,53 @@ TEST_F(JobStoreTest, CrashWhilePrintingComesBackInterruptedWithTheLastEvent) {
     EXPECT_EQ(disk["last_confirmed_event"], 5);
     // It may be resumed (back through starting) or aborted.
     EXPECT_EQ(store.request(1, JobAction::resume).state, JobState::starting);
+}
+
+TEST_F(JobStoreTest, StateJsonFollowsThePrintsProgress) {
+    JobStore store(options());
+    store.load_all();
+    const auto id = store.submit(input_).id;
+    drive(store, id, JobState::printing);
+    store.confirm_progress(id, 7);
+    EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["last_confirmed_event"], 7);
+    store.confirm_progress(id, 3);  // never backwards
+    EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["last_confirmed_event"], 7);
+}
+
+TEST_F(JobStoreTest, AJobWhoseJournalIsLostResumesOnlyOnTheOperatorsWord) {
+    {
+        JobStore store(options());
+        store.load_all();
+        const auto id = store.submit(input_).id;
+        drive(store, id, JobState::printing);
+        auto journal = store.journal(id);
+        for (std::int64_t seq = 1; seq <= 9; ++seq) journal->confirmed({.sequence = seq});
+        store.confirm_progress(id, 7);  // the last layer began at event 7
+    }
+    fs::remove(dir_ / "state" / "jobs" / "1" / "journal.jsonl");
+    for (int restart = 0; restart < 2; ++restart) {  // the refusal survives a second restart
+        JobStore store(options());
+        const LoadReport report = store.load_all();
+        EXPECT_THAT(report.warnings, ::testing::Contains(::testing::HasSubstr(
+                                         "job 1; its journal.jsonl is missing")));
+        const JobRecord r = store.get(1);
+        EXPECT_EQ(r.state, JobState::interrupted);
+        EXPECT_EQ(r.last_confirmed_event, 7);
+        EXPECT_THAT(r.reason, ::testing::HasSubstr("resume needs the operator's word"));
+        try {
+            store.request(1, JobAction::resume);
+            FAIL() << "a job whose journal is lost resumed";
+        } catch (const JobConflict& e) {
+            EXPECT_THAT(e.what(), ::testing::HasSubstr("known only up to event 7"));
+            EXPECT_THAT(e.what(), ::testing::HasSubstr("--journal-lost"));
+        }
+        EXPECT_TRUE(nlohmann::json::parse(read_file(state_file(1)))["journal_lost"]);
+    }
+    JobStore store(options());
+    store.load_all();
+    store.accept_lost_journal(1);
+    EXPECT_EQ(store.request(1, JobAction::resume).state, JobState::starting);
+    EXPECT_FALSE(nlohmann::json::parse(read_file(state_file(1)))["journal_lost"]);
 }
 
 TEST_F(JobStoreTest, EveryCellHoldingStateComesBackInterrupted) {

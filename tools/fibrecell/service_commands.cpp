@@ -199,12 +199,18 @@ void add_job_action(CLI::App& app, int& exit_code, const std::string& verb, cons
     auto id = std::make_shared<std::int64_t>(0);
     auto* opt = cmd->add_option("job", *id, "job id");
     if (job_required) opt->required();
+    auto journal_lost = std::make_shared<bool>(false);
+    if (method == "job.resume")
+        cmd->add_flag("--journal-lost", *journal_lost,
+                      "the job's journal is lost: go on after the last event its state.json saw "
+                      "(look at the part first; later events may print again)");
     add_connection_options(*cmd, *c);
-    cmd->callback([&exit_code, c, id, method, verb] {
+    cmd->callback([&exit_code, c, id, journal_lost, method, verb] {
         guarded(exit_code, [&] {
             api::ApiClient client = c->connect();
             json params = json::object();
             if (*id != 0) params["job"] = *id;
+            if (*journal_lost) params["journal_lost"] = true;
             const json answer = client.call(method, params);
             if (method == "job.remove")
                 print(*c, answer, "job " + std::to_string(answer.value("removed", 0)) + " removed\n");
