@@ -121,8 +121,16 @@ DurableAppender::~DurableAppender() {
 void DurableAppender::append(std::string_view line) {
     std::string whole(line);
     whole += '\n';
-    write_all(fd_, whole, path_);  // O_APPEND: one write() lands as one piece at the end
-    if (::fdatasync(fd_) != 0) fail("cannot sync", path_);
+    // A write cut short (a full disk) is taken back, so that the file never holds half a line
+    // for the next append to run on from.
+    const off_t before = ::lseek(fd_, 0, SEEK_END);
+    try {
+        write_all(fd_, whole, path_);  // O_APPEND: one write() lands as one piece at the end
+        if (::fdatasync(fd_) != 0) fail("cannot sync", path_);
+    } catch (...) {
+        if (before >= 0 && ::ftruncate(fd_, before) == 0) ::fdatasync(fd_);
+        throw;
+    }
 }
 
 }  // namespace fibrecell::config

@@ -59,7 +59,8 @@ class DurableAppender {
     DurableAppender(const DurableAppender&) = delete;
     DurableAppender& operator=(const DurableAppender&) = delete;
 
-    // `line` without its '\n'. Throws std::system_error naming the file.
+    // `line` without its '\n'. Throws std::system_error naming the file; what a failed append
+    // wrote is cut off again (ENOSPC, EIO), so the file ends with a whole line.
     void append(std::string_view line);
 
   private:

@@ -101,14 +101,20 @@ void JobStore::persist(const JobRecord& r) const {
 }
 
 JobRecord JobStore::change(Entry& e, JobState to, const std::string& reason) {
+    const JobRecord before = e.record;
     JobRecord& r = e.record;
-    const JobState from = r.state;
     r.state = to;
     if (!reason.empty()) r.reason = reason;
     r.updated_at = config::utc_now();
     if (e.journal) r.last_confirmed_event = e.journal->last_confirmed();
-    persist(r);
-    spdlog::info("job.state job {} {} -> {}{}{}", r.id, to_string(from), to_string(to),
+    try {
+        persist(r);
+    } catch (const std::exception& x) {
+        r = before;  // memory and disk agree: the change did not happen
+        throw StateWriteError("job " + std::to_string(r.id) + ": cannot save its state (" +
+                              std::string(to_string(to)) + "): " + x.what());
+    }
+    spdlog::info("job.state job {} {} -> {}{}{}", r.id, to_string(before.state), to_string(to),
                  reason.empty() ? "" : ": ", reason);
     return r;
 }
@@ -364,7 +370,19 @@ std::optional<JobRecord> JobStore::apply(std::int64_t id, JobAction event,
             to = done > 0 || e.record.last_confirmed_event > 0 ? JobState::interrupted
                                                                : JobState::planned;
         }
-        result = change(e, to, reason);
+        try {
+            result = change(e, to, reason);
+        } catch (const StateWriteError& x) {
+            // The event happened (the cell faulted, the print ended) whether or not the disk
+            // takes it: the service goes on with it in memory and says so. The disk keeps the
+            // last state it took, which a restart reads back as interrupted.
+            spdlog::critical("job.state_not_saved {}", x.what());
+            e.record.state = to;
+            e.record.reason = (reason.empty() ? std::string(to_string(to)) : reason) +
+                              "; not saved: " + x.what();
+            e.record.updated_at = config::utc_now();
+            result = e.record;
+        }
         if (event == JobAction::plan_done || event == JobAction::plan_failed)
             e.record.progress = {};
         if (is_ended(to)) prune_ended();

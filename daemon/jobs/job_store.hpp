@@ -37,6 +37,12 @@ struct JobStoreOptions {
     std::function<void(const planner::JobSpec&)> check_job;
 };
 
+// state.json could not be written (a full disk, an I/O error): the change did not happen.
+class StateWriteError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
 class JobNotFound : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
@@ -76,7 +82,8 @@ class JobStore {
     JobRecord get(std::int64_t id) const;  // throws JobNotFound ("no job 12")
     std::vector<JobRecord> list() const;   // in id order
 
-    // A user action (start, pause, resume, abort, remove, replan). Throws JobConflict with
+    // A user action (start, pause, resume, abort, remove, replan). Throws StateWriteError when
+    // state.json cannot be written (nothing changed), JobConflict with
     // refusal()'s message, or when another job holds the cell (start, resume), or for a replan of
     // a job whose print had started; JobNotFound. remove deletes the folder and returns the
     // record as it was; replan starts the job's planning afresh (no attempts, no reason).
@@ -84,7 +91,9 @@ class JobStore {
 
     // A service event (plan_done, faulted, ...). `reason` is kept for failed, aborted, paused and
     // interrupted. Returns nullopt (nothing changed) when the table does not allow it from the
-    // job's current state, e.g. plan_done for a job aborted meanwhile.
+    // job's current state, e.g. plan_done for a job aborted meanwhile. Never throws for the
+    // disk: when state.json cannot be written the change holds in memory, its reason says "not
+    // saved: ...", and the disk keeps the last state it took.
     std::optional<JobRecord> apply(std::int64_t id, JobAction event,
                                    const std::string& reason = {});
 

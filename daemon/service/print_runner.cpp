@@ -155,7 +155,13 @@ void PrintRunner::run() {
         }
         if (stopping_) break;
         lock.unlock();
-        poll_active();
+        try {
+            poll_active();
+        } catch (const std::exception& e) {
+            // Nothing the print path throws may end the service: the engine holds the cell safe
+            // on its own faults, and the job's state says what happened (JobStore::apply).
+            spdlog::critical("print.poll_failed: {}", e.what());
+        }
         lock.lock();
     }
     // Leaving: the print is paused, not aborted, so that the job comes back interrupted.

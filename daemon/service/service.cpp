@@ -74,6 +74,8 @@ auto as_api(F&& f) -> decltype(f()) {
         throw ApiError::not_found(e.what());
     } catch (const jobs::JobConflict& e) {
         throw ApiError::conflict(e.what());
+    } catch (const jobs::StateWriteError& e) {
+        throw ApiError::unavailable(std::string("unavailable: ") + e.what());  // a full disk
     }
 }
 

@@ -1,12 +1,17 @@
 // The one durable writer: files replaced whole (a reader sees the old or the new content), no
 // temporary left behind, unique temporary names per writer (two writers of one file never share
-// one), missing folders made, and appends one line at a time.
+// one), missing folders made, and appends one line at a time, a cut-short one taken back.
 #include "config/durable_file.hpp"
 
 #include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -86,4 +91,34 @@ TEST_F(DurableFileTest, AppendsWholeLines) {
     DurableAppender again(dir_ / "journal.jsonl");
     again.append("{\"seq\":3}");
     EXPECT_EQ(fibrecell::test::read_file(dir_ / "journal.jsonl"), "{\"seq\":1}\n{\"seq\":2}\n{\"seq\":3}\n");
+}
+
+TEST_F(DurableFileTest, AnAppendTheDiskCutsShortIsTakenBack) {
+    // A child whose files may not grow past 100 bytes (RLIMIT_FSIZE: the write stops there as
+    // on a full disk): the fourth 32-byte line is cut at byte 100, the append throws, and the
+    // file keeps its three whole lines.
+    const fs::path file = dir_ / "journal.jsonl";
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of a kill
+        const rlimit limit{100, 100};
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(2);
+        DurableAppender journal(file);
+        const std::string line(31, 'a');
+        for (int i = 0; i < 4; ++i) {
+            try {
+                journal.append(line);
+            } catch (const std::system_error&) {
+                ::_exit(i == 3 ? 0 : 3);
+            }
+        }
+        ::_exit(1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    ASSERT_EQ(WEXITSTATUS(status), 0) << "1: nothing failed, 2: no limit, 3: failed too soon";
+    const std::string line(31, 'a');
+    EXPECT_EQ(fibrecell::test::read_file(file), line + "\n" + line + "\n" + line + "\n");
 }
