@@ -1,5 +1,7 @@
 #include "tools/fibrecell/job_view.hpp"
 
+#include "config/printable.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,9 +24,10 @@ double number(const json& j, const char* key, double fallback = 0) {
     return it != j.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
+// A string of the service's answer, safe for the terminal (names and reasons come from users).
 std::string text(const json& j, const char* key, const std::string& fallback = "") {
     const auto it = j.find(key);
-    return it != j.end() && it->is_string() ? it->get<std::string>() : fallback;
+    return it != j.end() && it->is_string() ? config::printable(it->get<std::string>()) : fallback;
 }
 
 bool has(const json& j, const char* key) { return j.is_object() && j.contains(key) && !j[key].is_null(); }

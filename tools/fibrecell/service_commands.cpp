@@ -1,6 +1,7 @@
 #include "tools/fibrecell/service_commands.hpp"
 
 #include "config/base64.hpp"
+#include "config/printable.hpp"
 #include "daemon/api/api_client.hpp"
 #include "planner/job/job_spec.hpp"
 #include "tools/fibrecell/job_view.hpp"
@@ -122,7 +123,8 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     json cell = client.call("cell.status");
     std::string state = job.value("state", "");
     if (!c.json_output)
-        std::cout << "watching job " << id << " (" << job.value("name", "") << "): " << state << "\n";
+        std::cout << "watching job " << id << " (" << config::printable(job.value("name", ""))
+                  << "): " << state << "\n";
     std::string last_line, last_progress;
     auto last_print = std::chrono::steady_clock::now() - 1h;
     auto last_refresh = std::chrono::steady_clock::now();
@@ -150,7 +152,9 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
             if (!c.json_output) {
                 if (tty) std::cout << "\r\x1b[K";
                 std::cout << "job " << id << ": " << state
-                          << (job.contains("reason") ? " (" + job["reason"].get<std::string>() + ")" : "")
+                          << (job.contains("reason")
+                                  ? " (" + config::printable(job.value("reason", "")) + ")"
+                                  : "")
                           << "\n";
                 if (state == "paused" && job.contains("reason"))
                     std::cout << "  the cell is safe; `fibrecell resume " << id << "` goes on, `fibrecell abort "
@@ -243,7 +247,8 @@ void add_service_commands(CLI::App& app, int& exit_code) {
                 const auto id = job.value("id", std::int64_t{0});
                 if (!*follow || c->json_output) print(*c, job, "");
                 if (!c->json_output)
-                    std::cout << "job " << id << " (" << job.value("name", "") << ") submitted: "
+                    std::cout << "job " << id << " (" << config::printable(job.value("name", ""))
+                              << ") submitted: "
                               << job.value("state", "") << (*start ? ", prints when planned" : "") << "\n";
                 return *follow ? watch(*c, client, id) : 0;
             });
