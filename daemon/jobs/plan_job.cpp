@@ -11,6 +11,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace fibrecell::daemon::jobs {
@@ -86,6 +88,12 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
         control.check_cancel();
         control.report("robot", 0.0);
         r.robot = print::plan_robot(r.layers->layers, request.cell.robot, r.settings, r.job.name);
+        // A plan that would print nothing is a mistake in the job, not a plan.
+        if (r.robot->program.events.empty())
+            throw std::runtime_error(
+                "nothing to print: none of the " + std::to_string(r.layers->layers.size()) +
+                " layers has a toolpath (is the part smaller than the nozzle's line, or "
+                "placed outside the bed?)");
         print::add_robot_report(r.report, *r.robot);
         print::write_print_files(
             out, *r.robot,

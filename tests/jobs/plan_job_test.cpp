@@ -6,6 +6,7 @@
 #include "daemon/print/manifest.hpp"
 
 #include "job_test_files.hpp"
+#include "planner/mesh/structured_mesh.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 
 #include <gtest/gtest.h>
@@ -106,6 +107,24 @@ TEST_F(PlanJobTest, ASettingTheCellCannotPrintRefusesTheJobBeforeAnyWork) {
             << e.what();
     }
     EXPECT_FALSE(fs::exists(dir_ / "hot"));
+}
+
+TEST_F(PlanJobTest, APlanThatWouldPrintNothingIsRefused) {
+    // A stressed needle thinner than the PLA line (0.4 x 0.4 mm): layers, but no toolpath.
+    const auto mesh = planner::structured_tet_mesh({.size = {0.4, 0.4, 4}, .cells = {1, 1, 4}});
+    std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
+    for (auto& t : stress) t(2, 2) = 10.0;
+    test::write_vtk_file(dir_ / "needle.vtk", mesh, {.stress = &stress});
+    std::ofstream(dir_ / "needle.job.yaml") << "name: needle\nmodel:\n  mesh: needle.vtk\n";
+    PlanRequest r = request("needle");
+    r.job_file = dir_ / "needle.job.yaml";
+    try {
+        plan_job(r);
+        FAIL() << "a plan with nothing to print was written";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("nothing to print"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "needle" / "manifest.json"));  // never a finished plan
 }
 
 TEST_F(PlanJobTest, FieldStageAloneAndBadJobsFailWithTheirReason) {
