@@ -1,13 +1,7 @@
 // subscribe/unsubscribe and published events over the real Unix socket: state changes in order,
 // progress coalesced to the configured rate with the latest value delivered, topic filters,
 // several subscribers, and a slow subscriber cut off without holding anyone else up.
-#include "daemon/api/api_client.hpp"
-#include "daemon/api/api_server.hpp"
-#include "tests/support/temp_dir.hpp"
-
-#include <gtest/gtest.h>
-
-#include <boost/asio/executor_work_guard.hpp>
+#include "api_server_fixture.hpp"
 
 #include <filesystem>
 #include <thread>
@@ -16,6 +10,7 @@ using namespace fibrecell::api;
 using nlohmann::json;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+using fibrecell::test::call_error_code;
 
 namespace {
 
@@ -31,24 +26,9 @@ std::vector<Received> collect(ApiClient& c, std::chrono::milliseconds quiet = 30
     return out;
 }
 
-class ApiEventsTest : public ::testing::Test {
+class ApiEventsTest : public fibrecell::test::ApiServerTest {
   protected:
-    void SetUp() override {
-        config_.socket_path = (dir_ / "api.sock").string();
-    }
-    void TearDown() override {
-        work_.reset();
-        io_.stop();
-        if (io_thread_.joinable()) io_thread_.join();
-        server_.reset();
-    }
-    void start() {
-        server_ = std::make_unique<ApiServer>(io_, config_);
-        server_->add_method("echo", [](const json& params, const CallContext&) { return params; });
-        server_->start();
-        io_thread_ = std::thread([this] { io_.run(); });
-    }
-    ApiClient client() { return ApiClient::connect({.socket_path = config_.socket_path}); }
+    ApiEventsTest() : ApiServerTest("api-ev") {}
     ApiClient subscriber(const json& topics) {
         auto c = client();
         c.call("subscribe", {{"topics", topics}});
@@ -61,24 +41,7 @@ class ApiEventsTest : public ::testing::Test {
         server_->publish(
             {job, notify::job_progress, {{"job", job}, {"value", value}}, Delivery::latest});
     }
-
-    fibrecell::test::TempDir dir_{"api-ev"};
-    ApiConfig config_;
-    boost::asio::io_context io_;
-    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
-        boost::asio::make_work_guard(io_);
-    std::unique_ptr<ApiServer> server_;
-    std::thread io_thread_;
 };
-
-int call_error_code(ApiClient& c, const std::string& method, json params) {
-    try {
-        c.call(method, std::move(params));
-    } catch (const ApiCallError& e) {
-        return e.code();
-    }
-    return 0;
-}
 
 }  // namespace
 

@@ -1,14 +1,8 @@
 // JSON-RPC 2.0 over the real Unix socket: every error code, batches, notifications, oversized
 // requests, async handlers. The server runs on an io_context thread; clients are ApiClient.
-#include "daemon/api/api_client.hpp"
-#include "daemon/api/api_server.hpp"
+#include "api_server_fixture.hpp"
 #include "daemon/api/json_rpc.hpp"
 #include "daemon/api/params.hpp"
-#include "tests/support/temp_dir.hpp"
-
-#include <gtest/gtest.h>
-
-#include <boost/asio/executor_work_guard.hpp>
 
 #include <atomic>
 #include <filesystem>
@@ -18,49 +12,43 @@
 using namespace fibrecell::api;
 using nlohmann::json;
 using namespace std::chrono_literals;
+using fibrecell::test::call_error_code;
 
 namespace {
 
-class ApiProtocolTest : public ::testing::Test {
+class ApiProtocolTest : public fibrecell::test::ApiServerTest {
   protected:
-    void SetUp() override {
-        config_.socket_path = (dir_ / "api.sock").string();
-    }
+    ApiProtocolTest() : ApiServerTest("api-proto") {}
     void TearDown() override {
-        work_.reset();
-        io_.stop();
-        if (io_thread_.joinable()) io_thread_.join();
-        server_.reset();
+        ApiServerTest::TearDown();
         for (auto& t : workers_) t.join();
     }
-    void start() {
-        server_ = std::make_unique<ApiServer>(io_, config_);
-        server_->add_method("echo", [](const json& params, const CallContext&) { return params; });
-        server_->add_method("count",
-                            [this](const json&, const CallContext&) { return json(++count_); });
-        server_->add_method(
+    void add_methods(ApiServer& server) override {
+        server.add_method("count",
+                          [this](const json&, const CallContext&) { return json(++count_); });
+        server.add_method(
             "count.get", [this](const json&, const CallContext&) { return json(count_.load()); });
-        server_->add_method("typed", [](const json& params, const CallContext& ctx) {
+        server.add_method("typed", [](const json& params, const CallContext& ctx) {
             ParamReader p(ctx.method, params);
             const auto n = p.integer_or("n", 0, 0, 10);
             const auto name = p.string("name");
             p.finish();
             return json{{"n", n}, {"name", name}};
         });
-        server_->add_method("fail.internal", [](const json&, const CallContext&) -> json {
+        server.add_method("fail.internal", [](const json&, const CallContext&) -> json {
             throw std::runtime_error("disk on fire");
         });
-        server_->add_method("fail.conflict", [](const json&, const CallContext&) -> json {
+        server.add_method("fail.conflict", [](const json&, const CallContext&) -> json {
             throw ApiError(errc::conflict, "job j-7 is printing; pause it first",
                            json{{"state", "printing"}});
         });
-        server_->add_method("fail.not_found", [](const json&, const CallContext&) -> json {
+        server.add_method("fail.not_found", [](const json&, const CallContext&) -> json {
             throw ApiError::not_found("no job j-99");
         });
-        server_->add_method("fail.unavailable", [](const json&, const CallContext&) -> json {
+        server.add_method("fail.unavailable", [](const json&, const CallContext&) -> json {
             throw ApiError::unavailable("the service is draining");
         });
-        server_->add_async_method(
+        server.add_async_method(
             "later", [this](const json& params, const CallContext&, Responder r) {
                 const auto delay = std::chrono::milliseconds(params.value("ms", 20));
                 workers_.emplace_back([r, delay, params] {
@@ -71,11 +59,8 @@ class ApiProtocolTest : public ::testing::Test {
                         r.result({{"thread", "worker"}});
                 });
             });
-        server_->add_async_method("dropped", [](const json&, const CallContext&, Responder) {});
-        server_->start();
-        io_thread_ = std::thread([this] { io_.run(); });
+        server.add_async_method("dropped", [](const json&, const CallContext&, Responder) {});
     }
-    ApiClient client() { return ApiClient::connect({.socket_path = config_.socket_path}); }
 
     // The error object of the next message, which must be an error response.
     static json next_error(ApiClient& c) {
@@ -84,25 +69,9 @@ class ApiProtocolTest : public ::testing::Test {
         return *m;
     }
 
-    fibrecell::test::TempDir dir_{"api-proto"};
-    ApiConfig config_;
-    boost::asio::io_context io_;
-    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
-        boost::asio::make_work_guard(io_);
-    std::unique_ptr<ApiServer> server_;
-    std::thread io_thread_;
     std::vector<std::thread> workers_;  // joined after the server is gone
     std::atomic<int> count_{0};
 };
-
-int call_error_code(ApiClient& c, const std::string& method, json params = json::object()) {
-    try {
-        c.call(method, std::move(params), 5000ms);
-    } catch (const ApiCallError& e) {
-        return e.code();
-    }
-    return 0;
-}
 
 }  // namespace
 

@@ -1,12 +1,6 @@
 // The socket API's transports on real sockets: the Unix socket file (mode, group, stale and live
 // sockets), the client's one-line errors, TCP with its token, and the client limit.
-#include "daemon/api/api_client.hpp"
-#include "daemon/api/api_server.hpp"
-#include "tests/support/temp_dir.hpp"
-
-#include <gtest/gtest.h>
-
-#include <boost/asio/executor_work_guard.hpp>
+#include "api_server_fixture.hpp"
 
 #include <grp.h>
 #include <sys/socket.h>
@@ -37,44 +31,22 @@ std::string client_error(const ApiEndpoint& endpoint) {
     return "";
 }
 
-class ApiTransportTest : public ::testing::Test {
+class ApiTransportTest : public fibrecell::test::ApiServerTest {
   protected:
-    void SetUp() override {
-        config_.socket_path = (dir_ / "api.sock").string();
+    ApiTransportTest() : ApiServerTest("api-tr") {
         config_.tcp.token = kToken;
         config_.tcp.port = 0;  // ephemeral
     }
-    void TearDown() override {
-        stop_io();
-        server_.reset();
-    }
-    void start(bool run_io = true) {
-        server_ = std::make_unique<ApiServer>(io_, config_);
-        server_->add_method("echo", [](const json& params, const CallContext&) { return params; });
-        server_->add_method("whoami", [](const json&, const CallContext& ctx) {
+    void add_methods(ApiServer& server) override {
+        server.add_method("whoami", [](const json&, const CallContext& ctx) {
             return json{{"tcp", ctx.transport == Transport::tcp}, {"peer", ctx.peer}};
         });
-        server_->add_method("halt", [](const json&, const CallContext&) { return json{{"halted", true}}; });
-        server_->add_control_method("halt");  // as the service marks pause, abort, estop
-        server_->start();
-        if (run_io) io_thread_ = std::thread([this] { io_.run(); });
-    }
-    void stop_io() {
-        work_.reset();
-        io_.stop();
-        if (io_thread_.joinable()) io_thread_.join();
+        server.add_method("halt", [](const json&, const CallContext&) { return json{{"halted", true}}; });
+        server.add_control_method("halt");  // as the service marks pause, abort, estop
     }
     ApiEndpoint tcp(const std::string& token) const {
         return {.host = "127.0.0.1", .port = server_->tcp_port(), .token = token};
     }
-
-    fibrecell::test::TempDir dir_{"api-tr"};
-    ApiConfig config_;
-    boost::asio::io_context io_;
-    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
-        boost::asio::make_work_guard(io_);
-    std::unique_ptr<ApiServer> server_;
-    std::thread io_thread_;
 };
 
 // A socket file nobody listens on, as a crashed service leaves behind.
