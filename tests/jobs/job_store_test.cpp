@@ -61,6 +61,13 @@ class JobStoreTest : public ::testing::Test {
         for (A a : paths.at(target)) step(a);
         ASSERT_EQ(store.get(id).state, target);
     }
+    // A fresh store's first job, submitted and driven to printing.
+    std::int64_t printing_job(JobStore& store) {
+        store.load_all();
+        const auto id = store.submit(input_).id;
+        drive(store, id, JobState::printing);
+        return id;
+    }
 
     test::TempDir dir_{"jobstore"};
     JobInput input_;
@@ -199,9 +206,7 @@ TEST_F(JobStoreTest, StoreWalksEveryUserActionFromEveryState) {
 
 TEST_F(JobStoreTest, RefusalsNameTheJobAndWhatToDo) {
     JobStore store(options());
-    store.load_all();
-    const auto id = store.submit(input_).id;
-    drive(store, id, JobState::printing);
+    const auto id = printing_job(store);
     try {
         store.request(id, JobAction::remove);
         FAIL();
@@ -331,9 +336,7 @@ TEST_F(JobStoreTest, TornJournalTailIsCutAndBadLinesAreNamed) {
 TEST_F(JobStoreTest, CrashWhilePrintingComesBackInterruptedWithTheLastEvent) {
     {
         JobStore store(options());
-        store.load_all();
-        const auto id = store.submit(input_).id;
-        drive(store, id, JobState::printing);
+        const auto id = printing_job(store);
         auto journal = store.journal(id);
         for (std::int64_t seq = 1; seq <= 5; ++seq) {
             journal->sending({.sequence = seq});
@@ -359,9 +362,7 @@ TEST_F(JobStoreTest, CrashWhilePrintingComesBackInterruptedWithTheLastEvent) {
 
 TEST_F(JobStoreTest, StateJsonFollowsThePrintsProgress) {
     JobStore store(options());
-    store.load_all();
-    const auto id = store.submit(input_).id;
-    drive(store, id, JobState::printing);
+    const auto id = printing_job(store);
     store.confirm_progress(id, 7);
     EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["last_confirmed_event"], 7);
     store.confirm_progress(id, 3);  // never backwards
@@ -371,9 +372,7 @@ TEST_F(JobStoreTest, StateJsonFollowsThePrintsProgress) {
 TEST_F(JobStoreTest, AJobWhoseJournalIsLostResumesOnlyOnTheOperatorsWord) {
     {
         JobStore store(options());
-        store.load_all();
-        const auto id = store.submit(input_).id;
-        drive(store, id, JobState::printing);
+        const auto id = printing_job(store);
         auto journal = store.journal(id);
         for (std::int64_t seq = 1; seq <= 9; ++seq) journal->confirmed({.sequence = seq});
         store.confirm_progress(id, 7);  // the last layer began at event 7
