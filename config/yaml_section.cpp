@@ -1,6 +1,7 @@
 #include "config/yaml_section.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -25,6 +26,16 @@ const char* type_name() {
     if constexpr (std::is_same_v<T, std::vector<std::string>>) return "a list of strings";
     return "a value of another type";
 }
+
+template <class T>
+struct ListOf {
+    static constexpr bool is_list = false;
+};
+template <class E>
+struct ListOf<std::vector<E>> {
+    static constexpr bool is_list = true;
+    using element = E;
+};
 
 }  // namespace
 
@@ -90,21 +101,39 @@ YAML::Node Section::child(std::string_view key, bool required) {
 template <class T>
 T Section::get(std::string_view key) {
     YAML::Node n = child(key, true);
-    try {
-        if constexpr (std::is_same_v<T, std::vector<int>> ||
-                      std::is_same_v<T, std::vector<double>> ||
-                      std::is_same_v<T, std::vector<std::string>>) {
-            if (!n.IsSequence()) throw YAML::BadConversion(n.Mark());
-        } else {
+    if constexpr (ListOf<T>::is_list) {
+        // Element by element, so a bad one is named by its place: "ccf_after_pla[2]".
+        using E = typename ListOf<T>::element;
+        if (!n.IsSequence())
+            fail(key, std::string("must be ") + type_name<T>() + ", not " + describe_value(n));
+        T values;
+        for (std::size_t i = 0; i < n.size(); ++i) {
+            const YAML::Node e = n[i];
+            const std::string at = std::string(key) + "[" + std::to_string(i) + "]";
+            try {
+                if (!e.IsScalar()) throw YAML::BadConversion(e.Mark());
+                values.push_back(e.as<E>());
+            } catch (const YAML::Exception&) {
+                throw ConfigError(where(e) + ": " + key_path(at) + ": must be " + type_name<E>() +
+                                  ", not " + describe_value(e));
+            }
+            if constexpr (std::is_same_v<E, double>) {
+                if (!std::isfinite(values.back()))
+                    throw ConfigError(where(e) + ": " + key_path(at) + ": must be a finite number");
+            }
+        }
+        return values;
+    } else {
+        try {
             if (!n.IsScalar()) throw YAML::BadConversion(n.Mark());
+            T value = n.as<T>();
+            if constexpr (std::is_same_v<T, double>) {
+                if (!std::isfinite(value)) fail(key, "must be a finite number");
+            }
+            return value;
+        } catch (const YAML::Exception&) {
+            fail(key, std::string("must be ") + type_name<T>() + ", not " + describe_value(n));
         }
-        T value = n.as<T>();
-        if constexpr (std::is_same_v<T, double>) {
-            if (!std::isfinite(value)) fail(key, "must be a finite number");
-        }
-        return value;
-    } catch (const YAML::Exception&) {
-        fail(key, std::string("must be ") + type_name<T>() + ", not " + describe_value(n));
     }
 }
 
@@ -168,6 +197,19 @@ std::array<double, 3> Section::vec3_or(std::string_view key, std::array<double, 
         return fallback;
     }
     return vec3(key);
+}
+
+std::string Section::path_or(std::string_view key, std::string fallback) {
+    std::string p = get_or<std::string>(key, std::move(fallback));
+    if (p == "~" || p.starts_with("~/")) {
+        const char* home = std::getenv("HOME");
+        if (home == nullptr || home[0] != '/')
+            fail(key, "starts with ~, but HOME is not set to an absolute path");
+        p = std::string(home) + p.substr(1);
+    }
+    if (p.empty() || p.front() != '/')
+        fail(key, "must be an absolute path (or start with ~/), got '" + p + "'");
+    return p;
 }
 
 std::string Section::choice(std::string_view key, std::string fallback,

@@ -44,6 +44,9 @@ class Section {
     int integer(std::string_view key, int fallback, int min, int max);
     std::array<double, 3> vec3(std::string_view key);
     std::array<double, 3> vec3_or(std::string_view key, std::array<double, 3> fallback);
+    // An absolute file system path; a leading "~/" is the home directory of the user the
+    // service runs as ($HOME), so a shipped config can name a private directory.
+    std::string path_or(std::string_view key, std::string fallback);
     // One of the allowed words.
     std::string choice(std::string_view key, std::string fallback,
                        const std::vector<std::string>& allowed);

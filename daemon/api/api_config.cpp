@@ -85,9 +85,7 @@ bool parse_octal_mode(const std::string& text, unsigned& mode) {
 
 ApiConfig load_api_config(config::Section s) {
     ApiConfig c;
-    c.socket_path = s.get_or<std::string>("socket", c.socket_path);
-    if (c.socket_path.empty() || c.socket_path.front() != '/')
-        s.fail("socket", "must be an absolute path, got '" + c.socket_path + "'");
+    c.socket_path = s.path_or("socket", c.socket_path);
     constexpr std::size_t max_path = sizeof(sockaddr_un{}.sun_path) - 1;
     if (c.socket_path.size() > max_path)
         s.fail("socket", "is " + std::to_string(c.socket_path.size()) +
@@ -117,6 +115,7 @@ ApiConfig load_api_config(config::Section s) {
     c.progress_rate_hz = s.number("progress_rate_hz", c.progress_rate_hz, 0.0, 100.0, true);
     c.max_client_queue_bytes = static_cast<std::size_t>(s.integer(
         "max_client_queue_bytes", static_cast<int>(c.max_client_queue_bytes), 64 << 10, 1 << 30));
+    c.max_batch_calls = s.integer("max_batch_calls", c.max_batch_calls, 1, 100000);
     load_tcp(s.section("tcp"), c.tcp);
     s.finish();
     return c;

@@ -11,7 +11,7 @@ CellConfig load_cell_config(const std::string& path,
     c.name = root.get_or<std::string>("name", c.name);
     c.log_level =
         root.choice("log_level", c.log_level, {"trace", "debug", "info", "warn", "error", "off"});
-    c.state_dir = root.get_or<std::string>("state_dir", c.state_dir);
+    c.state_dir = root.path_or("state_dir", c.state_dir);
     c.simulated = root.get_or<bool>("simulated", c.simulated);
     c.extruder = drivers::load_extruder_config(root.section("extruder"));
     c.robot = drivers::abb::load_robot_config(root.section("robot"));

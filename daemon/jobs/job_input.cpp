@@ -9,6 +9,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A file system's limit for one name (NAME_MAX on Linux).
+constexpr std::size_t max_part_bytes = 255;
+
 void check_name(const std::string& name) {
     const std::string where = "files[\"" + name + "\"]: ";
     if (name.empty()) throw JobInputError("files: a file has an empty name");
@@ -22,16 +25,13 @@ void check_name(const std::string& name) {
         const std::string part = name.substr(start, end - start);
         if (part.empty() || part == "." || part == "..")
             throw JobInputError(where + "parts must not be empty, '.' or '..'");
+        if (part.size() > max_part_bytes)
+            throw JobInputError(where + "a part of the name is longer than " +
+                                std::to_string(max_part_bytes) + " bytes");
         start = end + 1;
     }
     if (name == job_yaml_name)
         throw JobInputError(where + "the name is taken by the job file itself");
-}
-
-// `file` lies inside `dir` (both absolute, normalised).
-bool inside(const fs::path& dir, const fs::path& file) {
-    const fs::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
-    return !rel.empty() && *rel.begin() != ".." && rel.is_relative();
 }
 
 }  // namespace
@@ -42,6 +42,13 @@ void write_job_input(const fs::path& dir, const JobInput& input) {
         check_name(name);
         if (!names.insert(name).second) throw JobInputError("files[\"" + name + "\"]: given twice");
     }
+    // "a" and "a/b" cannot both be: one would be a file and a folder.
+    for (const std::string& name : names)
+        for (std::size_t slash = name.find('/'); slash != std::string::npos;
+             slash = name.find('/', slash + 1))
+            if (names.contains(name.substr(0, slash)))
+                throw JobInputError("files[\"" + name + "\"]: lies in \"" + name.substr(0, slash) +
+                                    "\", which is a file of the job");
     fs::create_directories(dir);
     config::write_file_durably(dir / job_yaml_name, input.job_yaml);
     for (const auto& [name, bytes] : input.files) {
@@ -52,16 +59,8 @@ void write_job_input(const fs::path& dir, const JobInput& input) {
 }
 
 planner::JobSpec check_job_input(const fs::path& input_dir, const JobInput& input) {
-    const fs::path dir = fs::absolute(input_dir);
-    const planner::JobSpec job = planner::parse_job(input.job_yaml, job_yaml_name, dir.string());
-    const auto check = [&](const std::string& path, const char* key) {
-        if (!path.empty() && !inside(dir, path))
-            throw JobInputError(std::string(job_yaml_name) + ": " + key +
-                                ": must name a file submitted with the job, not " + path);
-    };
-    check(job.model.mesh_path, "model.mesh");
-    check(job.model.stress_path, "model.stress");
-    return job;
+    return planner::parse_job(input.job_yaml, job_yaml_name, fs::absolute(input_dir).string(),
+                              planner::JobFiles::submitted_only);
 }
 
 }  // namespace fibrecell::daemon::jobs

@@ -33,7 +33,7 @@ void write_job_input(const std::filesystem::path& dir, const JobInput& input);
 
 // Reads the job YAML of an input/ folder as the planner will, and checks that the files it names
 // are among the submitted ones (a remote job may not read the service's own files). Returns the
-// job. Throws config::ConfigError or JobInputError naming "job.yaml" and the key.
+// job. Throws config::ConfigError naming "job.yaml" and the key.
 planner::JobSpec check_job_input(const std::filesystem::path& input_dir, const JobInput& input);
 
 }  // namespace fibrecell::daemon::jobs

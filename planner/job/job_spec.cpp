@@ -19,11 +19,25 @@ Eigen::Vector3d to_vector(const std::array<double, 3>& a) {
     return {a[0], a[1], a[2]};
 }
 
-std::string resolve_file(Section& s, std::string_view key, const std::string& base_dir) {
+// `file` lies inside `dir` (both absolute), by name: the job's own files are never links.
+bool lies_inside(const fs::path& dir, const fs::path& file) {
+    const fs::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
+    return !rel.empty() && *rel.begin() != ".." && rel.is_relative();
+}
+
+std::string resolve_file(Section& s, std::string_view key, const std::string& base_dir,
+                         JobFiles files) {
     const std::string raw = s.get<std::string>(key);
     fs::path p(raw);
     if (p.is_relative()) p = fs::path(base_dir) / p;
-    if (!fs::is_regular_file(p)) s.fail(key, "file not found: " + p.string());
+    if (files == JobFiles::submitted_only) {
+        // One answer for a file outside the job and a missing one, so the host's files cannot be
+        // probed through it.
+        if (!lies_inside(fs::absolute(base_dir), fs::absolute(p)) || !fs::is_regular_file(p))
+            s.fail(key, "must name a file submitted with the job, not " + raw);
+    } else if (!fs::is_regular_file(p)) {
+        s.fail(key, "file not found: " + p.string());
+    }
     return p.lexically_normal().string();
 }
 
@@ -164,7 +178,7 @@ const Region* JobSpec::find_region(const std::string& region_name) const {
 }
 
 JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
-                  const std::string& base_dir) {
+                  const std::string& base_dir, JobFiles files) {
     Section root = Section::load_text(yaml_text, origin);
     if (root.is_null()) root.fail_here("is empty");
     JobSpec job;
@@ -179,8 +193,8 @@ JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
 
     Section model = root.section("model");
     if (model.is_null()) root.fail("model", "is required");
-    job.model.mesh_path = resolve_file(model, "mesh", base_dir);
-    if (model.has("stress")) job.model.stress_path = resolve_file(model, "stress", base_dir);
+    job.model.mesh_path = resolve_file(model, "mesh", base_dir, files);
+    if (model.has("stress")) job.model.stress_path = resolve_file(model, "stress", base_dir, files);
     if (model.has("load_case")) {
         if (!job.model.stress_path.empty())
             model.fail("load_case", "give either a stress file or a load case, not both");
@@ -222,7 +236,7 @@ JobSpec load_job_file(const std::string& path) {
     std::stringstream text;
     text << in.rdbuf();
     const fs::path dir = fs::absolute(fs::path(path)).parent_path();
-    return parse_job(text.str(), path, dir.string());
+    return parse_job(text.str(), path, dir.string(), JobFiles::anywhere);
 }
 
 }  // namespace fibrecell::planner

@@ -102,8 +102,12 @@ struct JobSpec {
 // config::ConfigError naming the file, line and key path on any problem.
 JobSpec load_job_file(const std::string& path);
 
+// Where a job's files may be: a job file on disk names any file; a submitted job only the files
+// it came with (in base_dir).
+enum class JobFiles { anywhere, submitted_only };
+
 // The same from text (jobs submitted over the socket carry their YAML inline).
 JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
-                  const std::string& base_dir);
+                  const std::string& base_dir, JobFiles files);
 
 }  // namespace fibrecell::planner

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 using fibrecell::config::ConfigError;
 using fibrecell::config::Section;
 using ::testing::HasSubstr;
@@ -58,6 +60,14 @@ TEST(YamlSection, WrongTypeAndMissingRequired) {
                 HasSubstr("b: is required"));
     EXPECT_THAT(error_of("a: [1, 2]\n", [](Section& s) { s.vec3("a"); }),
                 HasSubstr("a: must be a list of 3 numbers"));
+    // A bad element of a list is named by its place, not "not a list".
+    EXPECT_THAT(error_of("l: [3, 1e21]\n", [](Section& s) { s.get<std::vector<int>>("l"); }),
+                HasSubstr("line 1: l[1]: must be a whole number, not '1e21'"));
+    EXPECT_THAT(error_of("p:\n  l: [1, [2]]\n",
+                         [](Section& s) { s.section("p").get<std::vector<double>>("l"); }),
+                HasSubstr("p.l[1]: must be a number, not a list"));
+    EXPECT_THAT(error_of("l: 4\n", [](Section& s) { s.get<std::vector<int>>("l"); }),
+                HasSubstr("l: must be a list of whole numbers, not '4'"));
     EXPECT_THAT(error_of("a: .nan\n", [](Section& s) { s.get<double>("a"); }),
                 HasSubstr("a: must be a finite number"));
     EXPECT_THAT(error_of("s: 5\n", [](Section& s) { s.section("s"); }),
@@ -72,4 +82,18 @@ TEST(YamlSection, WrongTypeAndMissingRequired) {
 TEST(YamlSection, SyntaxErrorNamesLine) {
     EXPECT_THAT(error_of("a: 1\nb: [1, 2\n", [](Section&) {}), HasSubstr("cell.yaml: line"));
     EXPECT_THAT(error_of("- just\n- a list\n", [](Section&) {}), HasSubstr("must be a mapping"));
+}
+
+TEST(YamlSection, PathsAreAbsoluteOrInTheHomeDirectory) {
+    const char* home = std::getenv("HOME");
+    ASSERT_NE(home, nullptr);
+    Section s = Section::load_text("a: ~/.local/state/x\nb: /var/lib/x\nc: \"~\"\n", "t.yaml");
+    EXPECT_EQ(s.path_or("a", ""), std::string(home) + "/.local/state/x");
+    EXPECT_EQ(s.path_or("b", ""), "/var/lib/x");
+    EXPECT_EQ(s.path_or("c", ""), home);
+    EXPECT_EQ(s.path_or("absent", "/run/x"), "/run/x");
+    EXPECT_THAT(error_of("a: run/x\n", [](Section& t) { t.path_or("a", ""); }),
+                HasSubstr("line 1: a: must be an absolute path (or start with ~/), got 'run/x'"));
+    EXPECT_THAT(error_of("a: ~other/x\n", [](Section& t) { t.path_or("a", ""); }),
+                HasSubstr("a: must be an absolute path"));
 }

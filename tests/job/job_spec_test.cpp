@@ -25,7 +25,7 @@ class JobSpecTest : public ::testing::Test {
         std::ofstream(dir_ / "part_stress.txt") << "";
     }
 
-    JobSpec parse(const std::string& text) { return parse_job(text, "job.yaml", dir_.string()); }
+    JobSpec parse(const std::string& text) { return parse_job(text, "job.yaml", dir_.string(), JobFiles::anywhere); }
     std::string error(const std::string& text) {
         try {
             parse(text);

@@ -121,7 +121,7 @@ JobSpec reference_job(const std::string& name) {
                          "_stress.txt\nregions:\n  handle: {group: handle}\n"
                          "layers:\n  ccf_after_pla: {every: 3, first: 2}\n"
                          "boundary_fibres: [handle]\n",
-                     name + ".job.yaml", dir);
+                     name + ".job.yaml", dir, JobFiles::anywhere);
 }
 
 }  // namespace

@@ -55,7 +55,8 @@ class PlanFilesTest : public ::testing::Test {
         cell_.robot.rapid.max_chunk_lines = 60;
         settings_ = print_settings(planner::parse_job("name: part\nmodel: {mesh: loop.msh}\n",
                                                       "part.job.yaml",
-                                                      FIBRECELL_SOURCE_DIR "/examples/loop"),
+                                                      FIBRECELL_SOURCE_DIR "/examples/loop",
+                                                      planner::JobFiles::anywhere),
                                    cell_);
         plan_ = plan_robot(small_part(), cell_.robot, settings_, "part");
         PlanWriter out(dir_);

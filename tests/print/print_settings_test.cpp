@@ -18,7 +18,7 @@ namespace {
 
 planner::JobSpec job_with(const std::string& yaml) {
     return planner::parse_job("name: j\nmodel:\n  mesh: loop.msh\n" + yaml, "j.job.yaml",
-                              FIBRECELL_SOURCE_DIR "/examples/loop");
+                              FIBRECELL_SOURCE_DIR "/examples/loop", planner::JobFiles::anywhere);
 }
 
 std::string refusal(const planner::JobSpec& job, const CellConfig& cell = {}) {
