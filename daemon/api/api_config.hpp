@@ -45,6 +45,9 @@ struct ApiConfig {
     // Outgoing bytes a client may leave unread before it is disconnected (a slow subscriber
     // never holds the service back). A single message larger than this still goes out.
     std::size_t max_client_queue_bytes = std::size_t{32} << 20;
+    // Calls in one batch: one batch is handled in one go, so a huge one would hold everyone
+    // else's calls back. Its answers together must fit in max_client_queue_bytes.
+    int max_batch_calls = 1000;
 };
 
 // Reads and checks the section (ranges, octal mode, group exists, token or token_file readable,

@@ -21,7 +21,8 @@ inline constexpr int internal_error = -32603;    // a handler failed unexpectedl
 inline constexpr int unauthorized = -32001;  // TCP without (or with a wrong) server.auth token
 inline constexpr int not_found = -32002;     // no such job (or other named object)
 inline constexpr int conflict = -32003;      // the call does not fit the job's/cell's state
-inline constexpr int too_large = -32004;     // request line above api.max_request_bytes
+inline constexpr int too_large = -32004;     // request line above api.max_request_bytes, or a
+                                             // batch's answers above api.max_client_queue_bytes
 inline constexpr int unavailable = -32005;   // the service cannot take it now (busy, draining)
 }  // namespace errc
 

@@ -262,6 +262,7 @@ void ApiServer::update_limits(const ApiConfig& config) {
         core->config.idle_timeout = config.idle_timeout;
         core->config.control_idle_timeout = config.control_idle_timeout;
         core->config.max_client_queue_bytes = config.max_client_queue_bytes;
+        core->config.max_batch_calls = config.max_batch_calls;
         core->config.progress_rate_hz = config.progress_rate_hz;
         const auto interval =
             std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / config.progress_rate_hz));

@@ -23,37 +23,30 @@ bool same_token(const std::string& given, const std::string& expected) {
     return diff == 0;
 }
 
-std::string parse_error_text(const nlohmann::json::parse_error& e) {
-    // Drop nlohmann's "[json.exception.parse_error.101] " prefix: the code says it already.
-    std::string what = e.what();
-    const auto close = what.find("] ");
-    if (what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
-        what = what.substr(close + 2);
-    return what;
-}
-
 }  // namespace
 
 void ClientSession::handle_line(std::string_view line) {
     if (line.find_first_not_of(" \t") == std::string_view::npos) return;  // blank lines are fine
-    if (nesting_depth(line) > kMaxNestingDepth) {
-        send(error_response(nullptr, errc::invalid_request,
-                            "invalid request: JSON nested deeper than " +
-                                std::to_string(kMaxNestingDepth) + " levels"));
+    ParsedLine parsed = parse_line(line);
+    if (!parsed.error.is_null()) {
+        send(parsed.error);
         return;
     }
-    nlohmann::json message;
-    try {
-        message = nlohmann::json::parse(line);
-    } catch (const nlohmann::json::parse_error& e) {
-        send(error_response(nullptr, errc::parse_error, parse_error_text(e)));
-        return;
-    }
+    nlohmann::json message = std::move(parsed.message);
     auto reply = std::make_shared<PendingReply>();
     reply->session = weak_from_this();
     if (message.is_array()) {
         if (message.empty()) {
             send(error_response(nullptr, errc::invalid_request, "invalid request: an empty batch"));
+            return;
+        }
+        const auto max_calls = static_cast<std::size_t>(core_->config.max_batch_calls);
+        if (message.size() > max_calls) {
+            // Refused whole, before any call runs: none of it happened.
+            send(error_response(nullptr, errc::invalid_request,
+                                "invalid request: a batch of " + std::to_string(message.size()) +
+                                    " calls; at most " + std::to_string(max_calls) +
+                                    " (api.max_batch_calls)"));
             return;
         }
         reply->batch = true;
@@ -85,7 +78,17 @@ void ClientSession::complete(const std::shared_ptr<PendingReply>& reply, std::si
         answers.push_back(std::move(*s));
     }
     // A batch of notifications only is answered with nothing at all.
-    if (!answers.empty()) session->enqueue(std::make_shared<const std::string>(to_line(answers)));
+    if (answers.empty()) return;
+    std::string line = to_line(answers);
+    const std::size_t limit = session->core_->config.max_client_queue_bytes;
+    if (line.size() > limit)
+        // The calls ran; only their answers are too big to send in one go.
+        line = to_line(error_response(
+            nullptr, errc::too_large,
+            "the batch's " + std::to_string(answers.size()) + " answers came to " +
+                std::to_string(line.size()) + " bytes, over api.max_client_queue_bytes (" +
+                std::to_string(limit) + "); the calls were made: ask for fewer at a time"));
+    session->enqueue(std::make_shared<const std::string>(std::move(line)));
 }
 
 Responder ClientSession::make_responder(const RpcRequest& request,

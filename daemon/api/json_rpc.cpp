@@ -16,6 +16,15 @@ CheckedRequest invalid(const nlohmann::json& id, const std::string& why) {
     return {std::nullopt, error_response(id, errc::invalid_request, "invalid request: " + why)};
 }
 
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix: the code says it.
+std::string json_error_text(const nlohmann::json::exception& e) {
+    std::string what = e.what();
+    const auto close = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
+        what = what.substr(close + 2);
+    return what;
+}
+
 }  // namespace
 
 CheckedRequest check_request(nlohmann::json&& element) {
@@ -73,6 +82,20 @@ std::size_t nesting_depth(std::string_view text) {
         }
     }
     return deepest;
+}
+
+ParsedLine parse_line(std::string_view line) {
+    if (nesting_depth(line) > kMaxNestingDepth)
+        return {nullptr, error_response(nullptr, errc::invalid_request,
+                                        "invalid request: JSON nested deeper than " +
+                                            std::to_string(kMaxNestingDepth) + " levels")};
+    try {
+        return {nlohmann::json::parse(line), nullptr};
+    } catch (const nlohmann::json::exception& e) {
+        // parse_error for the syntax; out_of_range (406) for a number beyond double, which the
+        // grammar allows but no value here can hold.
+        return {nullptr, error_response(nullptr, errc::parse_error, json_error_text(e))};
+    }
 }
 
 nlohmann::json result_response(const nlohmann::json& id, nlohmann::json result) {

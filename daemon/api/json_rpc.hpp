@@ -32,6 +32,15 @@ CheckedRequest check_request(nlohmann::json&& element);
 std::size_t nesting_depth(std::string_view text);
 inline constexpr std::size_t kMaxNestingDepth = 128;
 
+// One request line (not blank) read: the message, or the error response to send instead when it
+// is nested deeper than kMaxNestingDepth (invalid_request) or is not JSON this service can hold
+// (parse_error: bad syntax, invalid UTF-8, a number no double holds such as 1e400).
+struct ParsedLine {
+    nlohmann::json message;
+    nlohmann::json error;  // an error response object when the line was refused, else null
+};
+ParsedLine parse_line(std::string_view line);
+
 nlohmann::json result_response(const nlohmann::json& id, nlohmann::json result);
 nlohmann::json error_response(const nlohmann::json& id, int code, const std::string& message,
                               const nlohmann::json& data = nullptr);

@@ -97,6 +97,20 @@ TEST_F(ApiProtocolTest, MalformedJsonIsAParseErrorAndTheConnectionStaysUsable) {
     EXPECT_EQ(c.call("echo", {{"still", "here"}}), (json{{"still", "here"}}));
 }
 
+// Found by fuzzing (tests/fuzz/corpus/json_rpc/number_overflow.jsonl): nlohmann reports a number
+// no double holds with out_of_range, not parse_error; it escaped the connection's handler and
+// ended fibrecelld.
+TEST_F(ApiProtocolTest, ANumberBeyondDoubleIsAParseErrorAndTheConnectionStaysUsable) {
+    start();
+    auto c = client();
+    c.send_line(R"({"jsonrpc":"2.0","id":1,"method":"echo","params":[1e400]})");
+    const json e = next_error(c);
+    EXPECT_EQ(e["id"], nullptr);
+    EXPECT_EQ(e["error"]["code"], errc::parse_error);
+    EXPECT_EQ(e["error"]["message"], "number overflow parsing '1e400'") << e;
+    EXPECT_EQ(c.call("echo", {{"still", "here"}}), (json{{"still", "here"}}));
+}
+
 TEST_F(ApiProtocolTest, InvalidRequestsAreAnsweredWithTheirIdWhenReadable) {
     start();
     auto c = client();
@@ -281,6 +295,46 @@ TEST_F(ApiProtocolTest, EmptyBatchIsOneInvalidRequest) {
     EXPECT_FALSE(e.is_array());
     EXPECT_EQ(e["error"]["code"], errc::invalid_request);
     EXPECT_EQ(e["error"]["message"], "invalid request: an empty batch");
+}
+
+TEST_F(ApiProtocolTest, ABatchOverTheLimitIsRefusedWholeBeforeAnyCallRuns) {
+    config_.max_batch_calls = 5;
+    start();
+    auto c = client();
+    json batch = json::array();
+    for (int i = 0; i < 6; ++i) batch.push_back({{"jsonrpc", "2.0"}, {"id", i}, {"method", "count"}});
+    c.send_line(batch.dump());
+    const json e = next_error(c);
+    EXPECT_FALSE(e.is_array());
+    EXPECT_EQ(e["error"]["code"], errc::invalid_request);
+    EXPECT_EQ(e["error"]["message"],
+              "invalid request: a batch of 6 calls; at most 5 (api.max_batch_calls)");
+    EXPECT_EQ(c.call("count.get"), 0);  // none of it ran
+    batch.erase(batch.begin());  // five: at the limit
+    c.send_line(batch.dump());
+    const auto m = c.read_message(5s);
+    ASSERT_TRUE(m && m->is_array()) << (m ? m->dump() : "nothing");
+    EXPECT_EQ(m->size(), 5u);
+    EXPECT_EQ(c.call("count.get"), 5);
+}
+
+TEST_F(ApiProtocolTest, ABatchWhoseAnswersDoNotFitIsOneTooLargeErrorAfterItsCallsRan) {
+    config_.max_client_queue_bytes = 64 << 10;
+    start();
+    auto c = client();
+    // Ten echoes of 10 KiB each: 100 KiB of answers against a 64 KiB queue.
+    json batch = json::array();
+    for (int i = 0; i < 10; ++i)
+        batch.push_back({{"jsonrpc", "2.0"}, {"id", i}, {"method", "echo"},
+                         {"params", {{"text", std::string(10 << 10, 'x')}}}});
+    batch.push_back({{"jsonrpc", "2.0"}, {"id", 10}, {"method", "count"}});
+    c.send_line(batch.dump());
+    const json e = next_error(c);
+    EXPECT_FALSE(e.is_array());
+    EXPECT_EQ(e["error"]["code"], errc::too_large);
+    EXPECT_NE(e["error"]["message"].get<std::string>().find("the calls were made"), std::string::npos)
+        << e;
+    EXPECT_EQ(c.call("count.get"), 1);  // the connection goes on, and the calls did run
 }
 
 TEST_F(ApiProtocolTest, NotificationsAreNeverAnswered) {
