@@ -78,7 +78,8 @@ json print_once(api::ApiClient& c, const std::string& socket, const fs::path& jo
         j = c.call("job.get", {{"job", id}});
         peak_rss = std::max(peak_rss, rss_kib(pid));
         const std::string state = j.value("state", "");
-        if (state == "completed" || state == "failed" || state == "aborted" || state == "paused" ||
+        if (state == "completed" || state == "completed_with_warnings" ||
+            state == "failed" || state == "aborted" || state == "paused" ||
             state == "planned")  // planned again: the start was refused
             break;
     }

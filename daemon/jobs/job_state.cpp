@@ -35,6 +35,7 @@ constexpr Transition transitions[] = {
     {S::printing, A::pause, S::pausing},
     {S::printing, A::faulted, S::paused},
     {S::printing, A::print_done, S::completed},
+    {S::printing, A::print_short, S::completed_with_warnings},
     {S::printing, A::abort, S::aborted},
     {S::printing, A::print_failed, S::failed},
     {S::printing, A::service_restarted, S::interrupted},
@@ -54,6 +55,7 @@ constexpr Transition transitions[] = {
     {S::interrupted, A::abort, S::aborted},
 
     {S::completed, A::remove, S::completed},
+    {S::completed_with_warnings, A::remove, S::completed_with_warnings},
     {S::aborted, A::remove, S::aborted},
     {S::failed, A::remove, S::failed},
     {S::failed, A::replan, S::planning},
@@ -97,6 +99,7 @@ std::string hint(S state, A action) {
                 return "its print has started: resume it with the plan it started with, or abort it";
             return "resume or abort it first";  // remove
         case S::completed:
+        case S::completed_with_warnings:
         case S::aborted:
         case S::failed:
             if (action == A::abort) return "it has ended already";
@@ -123,6 +126,8 @@ std::string_view to_string(JobState s) {
             return "paused";
         case S::completed:
             return "completed";
+        case S::completed_with_warnings:
+            return "completed_with_warnings";
         case S::aborted:
             return "aborted";
         case S::failed:
@@ -161,6 +166,8 @@ std::string_view to_string(JobAction a) {
             return "faulted";
         case A::print_done:
             return "print_done";
+        case A::print_short:
+            return "print_short";
         case A::print_failed:
             return "print_failed";
         case A::service_restarted:
@@ -182,7 +189,13 @@ bool is_user_action(JobAction a) {
 }
 
 bool is_ended(JobState s) {
-    return s == S::completed || s == S::aborted || s == S::failed;
+    return s == S::completed || s == S::completed_with_warnings || s == S::aborted ||
+           s == S::failed;
+}
+
+bool keeps_its_reason(JobState s) {
+    return s == S::pausing || s == S::paused || s == S::aborted || s == S::failed ||
+           s == S::interrupted;
 }
 
 bool holds_cell(JobState s) {

@@ -104,7 +104,7 @@ JobRecord JobStore::change(Entry& e, JobState to, const std::string& reason) {
     const JobRecord before = e.record;
     JobRecord& r = e.record;
     r.state = to;
-    if (!reason.empty()) r.reason = reason;
+    if (!reason.empty() || !keeps_its_reason(to)) r.reason = reason;
     r.updated_at = config::utc_now();
     if (e.journal) r.last_confirmed_event = e.journal->last_confirmed();
     try {

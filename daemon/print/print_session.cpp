@@ -166,7 +166,13 @@ void PrintSession::start_engine(std::int64_t first_event,
         old = std::move(engine_);
         engine_ = std::move(engine);
     }
-    if (old) old->stop();
+    if (!old) return;
+    old->stop();
+    // What the replaced engine fell short of stays the print's (result.json).
+    const sync::SyncStatus last = old->status();
+    std::lock_guard lock(mu_);
+    for (const sync::Shortfall& f : last.stats.shortfalls)
+        if (earlier_shortfalls_.size() < sync::max_shortfalls) earlier_shortfalls_.push_back(f);
 }
 
 void PrintSession::pause() {
@@ -215,6 +221,13 @@ void PrintSession::resume() {
         if (s.metering.sequence > 0 && s.metering.sequence <= s.last_confirmed)
             feed = sync::ResumeFeed{s.metering.sequence, s.metering.e_fed_mm};
         start_engine(s.last_confirmed + 1, feed, true);
+        // The robot may stand at an event the faulted engine never finished (a barrier whose
+        // release it waits for): no counter change will come for it, so the new engine takes the
+        // counter as it reads now (a value it has confirmed already is a duplicate to it).
+        const abb::RobotIoSnapshot io = links_.robot_io.snapshot();
+        const auto now = abb::IoClock::now();
+        std::lock_guard lock(mu_);
+        engine_->robot_event({std::nullopt, io.event_counter, io.barrier, now, now});
     }
     if (robot.state == abb::FcState::held) rearm_after_hold();
     std::lock_guard lock(mu_);
@@ -368,7 +381,12 @@ PrintStatus PrintSession::poll() {
         robot_error = e.what();
     }
     std::lock_guard lock(mu_);
-    if (engine_) status_.sync = engine_->status();
+    if (engine_) {
+        status_.sync = engine_->status();
+        auto& all = status_.sync.stats.shortfalls;
+        all.insert(all.begin(), earlier_shortfalls_.begin(), earlier_shortfalls_.end());
+        if (all.size() > sync::max_shortfalls) all.resize(sync::max_shortfalls);
+    }
     if (robot_error.empty()) status_.robot = robot;
     if (status_.phase != PrintPhase::printing && status_.phase != PrintPhase::paused)
         return status_;

@@ -131,8 +131,9 @@ class PrintSession {
     drivers::abb::FcMainControl fc_;
     std::function<void(const sync::EventDone&)> on_done_;
 
-    mutable std::mutex mu_;  // guards engine_, status_
+    mutable std::mutex mu_;  // guards engine_, status_, earlier_shortfalls_
     std::unique_ptr<sync::SyncEngine> engine_;
+    std::vector<sync::Shortfall> earlier_shortfalls_;  // of engines a resume replaced
     PrintStatus status_;
 };
 

@@ -90,6 +90,10 @@ void CellDevices::connect(std::chrono::milliseconds timeout) {
     if (board_.state() != drivers::DeviceState::active) {
         if (board_.state() == drivers::DeviceState::error) board_.clear();
         if (board_.state() == drivers::DeviceState::unconfigured) board_.configure(cell_.extruder.link);
+        {
+            std::lock_guard lock(mu_);
+            temps_ = {};  // the readings of the board before: its own reports come anew
+        }
         try {
             board_.activate();
         } catch (const std::exception& e) {
@@ -144,11 +148,14 @@ json CellDevices::status() const {
     if (board_.fault() != drivers::marlin::LinkFailure::none)
         board["fault"] = std::string(drivers::marlin::to_string(board_.fault())) + ": " +
                          board_.fault_detail();
-    const HotendTemps t = temperatures();
-    put(board, "pla_c", t.pla_c);
-    put(board, "pla_target_c", t.pla_target_c);
-    put(board, "ccf_c", t.ccf_c);
-    put(board, "ccf_target_c", t.ccf_target_c);
+    // Readings only from a board that is there: a fallen-out one's last ones are no news.
+    if (board_.state() == drivers::DeviceState::active) {
+        const HotendTemps t = temperatures();
+        put(board, "pla_c", t.pla_c);
+        put(board, "pla_target_c", t.pla_target_c);
+        put(board, "ccf_c", t.ccf_c);
+        put(board, "ccf_target_c", t.ccf_target_c);
+    }
     const abb::RobotIoSnapshot io = robot_io_->snapshot();
     json robot = {{"io", std::string(abb::to_string(io.state))},
                   {"event", io.event_counter},

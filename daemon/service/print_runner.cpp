@@ -4,7 +4,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
 
 namespace fibrecell::daemon::service {
 
@@ -29,6 +31,49 @@ std::optional<sync::KindTiming> timing_of(const sync::SyncStatus& s, abb::EventK
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
+// The head of the print after event `done`: that of the last head switch up to it.
+std::optional<drivers::Head> head_at(const abb::PrintProgram& program, std::int64_t done) {
+    for (auto i = std::min<std::int64_t>(done, static_cast<std::int64_t>(program.events.size()));
+         i >= 1; --i) {
+        const abb::ProgramEvent& e = program.events[static_cast<std::size_t>(i - 1)];
+        if (e.kind == abb::EventKind::head_switch)
+            return e.nozzle == abb::Nozzle::pla ? drivers::Head::pla : drivers::Head::ccf;
+    }
+    return std::nullopt;
+}
+
+json shortfall_json(const sync::Shortfall& f) {
+    return {{"kind", sync::to_string(f.kind)}, {"event", f.sequence}, {"layer", f.layer + 1},
+            {"path", f.path + 1},             {"mm", f.mm}};
+}
+
+std::string describe(const sync::Shortfall& f) {
+    char mm[32];
+    std::snprintf(mm, sizeof mm, "%.1f mm", f.mm);
+    const std::string where = " at event " + std::to_string(f.sequence) + " (layer " +
+                              std::to_string(f.layer + 1) + ", path " + std::to_string(f.path + 1) +
+                              ")";
+    switch (f.kind) {
+        case sync::ShortfallKind::fibre_feed_dropped:
+            return "fibre path" + where + ": " + mm + " not fed";
+        case sync::ShortfallKind::pla_feed_dropped:
+            return "PLA path" + where + ": " + mm + " not extruded";
+        case sync::ShortfallKind::late_cut: return "cut" + where + ": " + mm + " late";
+    }
+    return "?";
+}
+
+// The job's reason when the print ended short of its plan: the first few, then how many more.
+std::string shortfall_reason(const std::vector<sync::Shortfall>& all) {
+    constexpr std::size_t shown = 3;
+    std::string r = std::to_string(all.size()) +
+                    (all.size() == 1 ? " shortfall from the plan: " : " shortfalls from the plan: ");
+    for (std::size_t i = 0; i < std::min(all.size(), shown); ++i)
+        r += (i ? "; " : "") + describe(all[i]);
+    if (all.size() > shown) r += "; and " + std::to_string(all.size() - shown) + " more";
+    return r + " (result.json: shortfalls)";
+}
+
 }  // namespace
 
 struct PrintRunner::Active {
@@ -40,6 +85,7 @@ struct PrintRunner::Active {
     std::optional<Clock::time_point> paused_since;
     bool heaters_off = false;
     bool fault_reported = false;
+    bool reselect_tool = false;  // the board restarted: its tool is the default one
     std::atomic<std::int64_t> last_confirmed{0};
     std::atomic<int> layer{-1};
     sync::SyncStatus sync;  // as of the last poll
@@ -203,6 +249,8 @@ void PrintRunner::handle(Command& c) {
             case Command::Kind::resume:
                 if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
                 try {
+                    if (devices_.board().state() != drivers::DeviceState::active)
+                        reconnect_board(*active_);
                     if (active_->heaters_off) {
                         auto heat = devices_.board().submit(devices_.extruder().prepare(
                             active_->plan.print.settings.hotends(), true));
@@ -210,6 +258,17 @@ void PrintRunner::handle(Command& c) {
                             !heat.get().ok())
                             throw print::PrintError("resume: re-heating failed");
                         active_->heaters_off = false;
+                    }
+                    if (active_->reselect_tool) {
+                        // The board restarted on its default tool: the head of the print's
+                        // last confirmed event again, before the feed goes on.
+                        if (const auto head = head_at(active_->plan.program, active_->last_confirmed)) {
+                            auto select = devices_.board().submit(devices_.extruder().select(*head));
+                            if (select.wait_for(std::chrono::seconds(30)) != std::future_status::ready ||
+                                !select.get().ok())
+                                throw print::PrintError("resume: the tool select after the board's restart failed");
+                        }
+                        active_->reselect_tool = false;
                     }
                     active_->session->resume();
                     active_->paused_since.reset();
@@ -231,6 +290,24 @@ void PrintRunner::handle(Command& c) {
         spdlog::error("print.command job {}: {}", c.id, error);
     }
     if (c.done) c.done(error);
+}
+
+// The board fell out while the job was paused (a reset, a cable pulled and put back): open the
+// link again. A board that restarted has lost its temperatures and its tool, so both are set
+// again before the print goes on.
+void PrintRunner::reconnect_board(Active& a) {
+    spdlog::warn("print.board_reconnect job {}: the board link is {}; connecting again", a.id,
+                 drivers::to_string(devices_.board().state()));
+    try {
+        devices_.connect(options_.connect_timeout);
+    } catch (const std::exception& e) {
+        throw print::PrintError(std::string("resume: the extruder board is still not connected: ") +
+                                e.what());
+    }
+    devices_.extruder().forget_tool();
+    a.heaters_off = true;  // re-heated (and waited for) before the resume
+    a.reselect_tool = true;
+    spdlog::info("print.board_reconnected job {}", a.id);
 }
 
 void PrintRunner::start_job(std::int64_t id) {
@@ -286,6 +363,7 @@ void PrintRunner::start_job(std::int64_t id) {
     po.first_chunk = a->plan.first_chunk;
     po.chunk_count = a->plan.chunk_count;
     po.sync.time_scale = devices_.time_scale();
+    po.sync.late_cut_mm = options_.late_cut_mm;
     po.sync.first_event = a->plan.first_event;
     po.sync.skip_events = a->plan.skip_events;
     if (a->plan.resume && !a->plan.resume->nothing_left)
@@ -333,8 +411,12 @@ void PrintRunner::poll_active() {
     switch (st.phase) {
         case print::PrintPhase::completed: {
             const std::int64_t id = a.id;
+            const auto shortfalls = st.sync.stats.shortfalls;
             finish("");  // result.json first: a client that sees `completed` finds the result
-            store_.apply(id, JobAction::print_done);
+            if (shortfalls.empty())
+                store_.apply(id, JobAction::print_done);
+            else
+                store_.apply(id, JobAction::print_short, shortfall_reason(shortfalls));
             return;
         }
         case print::PrintPhase::faulted:
@@ -383,6 +465,11 @@ void PrintRunner::finish(const std::string& outcome_reason) {
     for (const auto& t : st.sync.stats.timing)
         latency[std::string(abb::to_string(t.kind))] = summary_json(t.submit_ms);
     result["latency_ms"] = latency;
+    // What fell short of the plan, path by path (a completed print with any is
+    // completed_with_warnings).
+    json shortfalls = json::array();
+    for (const auto& f : st.sync.stats.shortfalls) shortfalls.push_back(shortfall_json(f));
+    result["shortfalls"] = shortfalls;
     try {
         config::write_file_durably(store_.job_dir(a->id) / "result.json", result.dump(2) + "\n");
     } catch (const std::exception& e) {

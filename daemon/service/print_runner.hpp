@@ -44,6 +44,7 @@ struct PrintRunnerOptions {
     std::chrono::milliseconds heater_timeout{std::chrono::minutes(30)};  // paused: heaters off
     std::chrono::milliseconds poll_period{100};
     int realtime_priority = 20;  // SCHED_FIFO of the sync, serial and Modbus threads; 0: off
+    double late_cut_mm = 2.0;    // a cut this far past its place is a shortfall
 };
 
 class PrintRunner {
@@ -90,6 +91,7 @@ class PrintRunner {
     void run();
     void handle(Command& c);
     void start_job(std::int64_t id);
+    void reconnect_board(Active& a);
     void poll_active();
     void finish(const std::string& outcome_reason);
     nlohmann::json progress_json() const;  // lock held

@@ -34,6 +34,7 @@ PrintRunnerOptions load_print_options(config::Section s) {
     o.heater_timeout =
         ms(static_cast<long>(60000 * s.number("heater_timeout_min", 30, 0.01, 24 * 60)));
     o.realtime_priority = s.integer("realtime_priority", 20, 0, 99);
+    o.late_cut_mm = s.number("late_cut_mm", o.late_cut_mm, 0, 1000, true);
     s.finish();
     return o;
 }

@@ -190,8 +190,13 @@ std::uint64_t EventProcessor::send_for_event(const ProgramEvent& e, const EventC
     const std::uint64_t first = send({lines.front()});
     // A barrier's robot stands still; elsewhere it ran on at the path speed meanwhile.
     const double ran_s = ms_between(change.first_read, submitted) / 1000.0 * options_.time_scale;
-    timings_.record_submit(e.kind, ms_between(change.first_read, submitted),
-                           e.barrier ? 0.0 : e.speed_mm_s * ran_s);
+    const double ran_mm = e.barrier ? 0.0 : e.speed_mm_s * ran_s;
+    timings_.record_submit(e.kind, ms_between(change.first_read, submitted), ran_mm);
+    if (e.kind == EventKind::cut && ran_mm >= options_.late_cut_mm) {
+        ++stats_.late_cuts;
+        record_shortfall(ShortfallKind::late_cut, e, ran_mm);
+        spdlog::warn("sync.late_cut {} {:.3f} mm past its place", describe(e), ran_mm);
+    }
     ok_probes_[first] = {e.kind, change.first_read};
     if (lines.size() == 1) return first;
     return send({lines.begin() + 1, lines.end()});
@@ -296,8 +301,17 @@ void EventProcessor::stop_metering() {
         (fibre ? stats_.feed_left_at_cut : stats_.extrusion_left_at_off) += 1;
         (fibre ? stats_.feed_left_at_cut_mm : stats_.extrusion_left_at_off_mm) += left;
         spdlog::warn("sync.feed_dropped {} left={:.5f} mm", describe(*metering_->event), left);
+        if (left > options_.shortfall_mm)
+            record_shortfall(fibre ? ShortfallKind::fibre_feed_dropped
+                                   : ShortfallKind::pla_feed_dropped,
+                             *metering_->event, left);
     }
     metering_.reset();
+}
+
+void EventProcessor::record_shortfall(ShortfallKind kind, const ProgramEvent& e, double mm) {
+    if (stats_.shortfalls.size() < max_shortfalls)
+        stats_.shortfalls.push_back({kind, e.sequence, e.layer, e.path, mm});
 }
 
 // --- Pause, resume, faults ----------------------------------------------------------------------

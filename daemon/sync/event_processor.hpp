@@ -97,6 +97,7 @@ class EventProcessor {
     void release(std::int64_t sequence);
     void start_metering(const drivers::abb::ProgramEvent& e, SteadyClock::time_point robot_start);
     void stop_metering();
+    void record_shortfall(ShortfallKind kind, const drivers::abb::ProgramEvent& e, double mm);
     void piece_answered(std::uint64_t ticket, const drivers::marlin::CommandOutcome& outcome);
     std::string where() const;
 

@@ -25,6 +25,8 @@ void validate(const SyncOptions& o, std::int64_t events_total) {
     require_positive(o.fibre_piece_mm, "fibre_piece_mm");
     require_positive(o.pla_piece_mm, "pla_piece_mm");
     require_positive(o.time_scale, "time_scale");
+    require_positive(o.shortfall_mm, "shortfall_mm");
+    require_positive(o.late_cut_mm, "late_cut_mm");
     if (!(o.lead_s >= 0) || !std::isfinite(o.lead_s))
         throw std::invalid_argument("sync: lead_s must be >= 0, got " + std::to_string(o.lead_s));
     if (o.first_event < 1 || o.first_event > events_total + 1)

@@ -32,6 +32,11 @@ struct SyncOptions {
     double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
     double time_scale = 1;             // simulated seconds per real second (simulated cell)
     std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
+    // Shortfalls (SyncStats::shortfalls): metered feed dropped at a path's end above
+    // shortfall_mm (less is within one re-prime), a cut that came late_cut_mm or more after the
+    // robot passed its place.
+    double shortfall_mm = 0.05;
+    double late_cut_mm = 2.0;
     // Hotend readings known at the start (a pre-flight M109 just brought both to temperature),
     // until the board's own reports come; none: a head switch waits for a report or heats.
     std::optional<double> pla_hotend_c, ccf_hotend_c;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fibrecell::daemon::sync {
@@ -39,6 +40,24 @@ struct MeteringStatus {
     std::size_t pieces_unanswered = 0;  // sent, reply not in yet (e_fed_mm may still grow)
 };
 
+// Something a path did not get as planned: the part on the bed differs from the plan there.
+enum class ShortfallKind {
+    fibre_feed_dropped,  // metered fibre still unsent when the cut came
+    pla_feed_dropped,    // metered PLA still unsent when extrude_off came
+    late_cut,            // the robot had run on past the cut's place when the cutter got it
+};
+std::string_view to_string(ShortfallKind k);
+
+struct Shortfall {
+    ShortfallKind kind = ShortfallKind::fibre_feed_dropped;
+    std::int64_t sequence = 0;  // the path's fibre_start / extrude_on, or the cut event
+    int layer = 0, path = 0;    // of that event (ProgramEvent::layer, path)
+    double mm = 0;              // feed not laid, or how far past its place the cut came
+};
+
+// Kept per engine; a print keeps at most this many (the counts in SyncStats go on).
+inline constexpr std::size_t max_shortfalls = 1000;
+
 struct SyncStats {
     std::uint64_t events_done = 0;
     std::uint64_t gaps = 0;           // counter jumps of more than one event
@@ -55,6 +74,8 @@ struct SyncStats {
     std::uint64_t extrusion_left_at_off = 0;
     double extrusion_left_at_off_mm = 0;
     std::vector<KindTiming> timing;   // per event kind with board commands
+    std::uint64_t late_cuts = 0;      // cuts at least SyncOptions::late_cut_mm late
+    std::vector<Shortfall> shortfalls;  // in event order, at most max_shortfalls
 };
 
 struct SyncStatus {

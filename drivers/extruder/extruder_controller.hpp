@@ -43,6 +43,10 @@ class ExtruderController {
     std::vector<std::string> retract();
     std::vector<std::string> prime();
 
+    // The board restarted (a reset, a replug): it is on its default tool again, so the next
+    // select() sends T<n> whatever was selected before.
+    void forget_tool() { tool_ = -1; }
+
     const ExtruderConfig& config() const { return config_; }
 
   private:

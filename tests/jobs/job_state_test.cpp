@@ -113,8 +113,8 @@ TEST(JobStateTest, EveryUserActionInEveryStateIsAllowedOrRefusedAsTabled) {
             }
         }
     }
-    EXPECT_EQ(allowed, 17);  // 10 states x 6 actions
-    EXPECT_EQ(refused, 43);
+    EXPECT_EQ(allowed, 18);  // 11 states x 6 actions
+    EXPECT_EQ(refused, 48);
 }
 
 TEST(JobStateTest, ServiceEventsComeOnlyFromTheirStates) {
@@ -126,6 +126,7 @@ TEST(JobStateTest, ServiceEventsComeOnlyFromTheirStates) {
         {A::pause_done, {{S::pausing, {S::paused}}}},
         {A::faulted, {{S::printing, {S::paused}}, {S::pausing, {S::paused}}}},
         {A::print_done, {{S::printing, {S::completed}}}},
+        {A::print_short, {{S::printing, {S::completed_with_warnings}}}},
         {A::print_failed,
          {{S::planning, {S::failed}},
           {S::starting, {S::failed}},
@@ -152,8 +153,10 @@ TEST(JobStateTest, ServiceEventsComeOnlyFromTheirStates) {
 }
 
 TEST(JobStateTest, NamesAreTheContractsAndRoundTrip) {
-    const char* names[] = {"planning", "planned",   "starting", "printing", "pausing",
-                           "paused",   "completed", "aborted",  "failed",   "interrupted"};
+    const char* names[] = {"planning", "planned",   "starting",
+                           "printing", "pausing",   "paused",
+                           "completed", "completed_with_warnings", "aborted",
+                           "failed",   "interrupted"};
     ASSERT_EQ(std::size(all_job_states), std::size(names));
     for (std::size_t i = 0; i < std::size(names); ++i) {
         EXPECT_EQ(to_string(all_job_states[i]), names[i]);

@@ -55,6 +55,8 @@ class JobStoreTest : public ::testing::Test {
             {JobState::pausing, {A::plan_done, A::start, A::print_started, A::pause}},
             {JobState::paused, {A::plan_done, A::start, A::print_started, A::pause, A::pause_done}},
             {JobState::completed, {A::plan_done, A::start, A::print_started, A::print_done}},
+            {JobState::completed_with_warnings,
+             {A::plan_done, A::start, A::print_started, A::print_short}},
             {JobState::aborted, {A::abort}},
             {JobState::failed, {A::plan_failed}},
         };
@@ -117,13 +119,36 @@ TEST_F(JobStoreTest, BadSubmissionIsRefusedAndUsesNoId) {
     } catch (const JobInputError& e) {
         EXPECT_STREQ(e.what(), "files[\"../evil.txt\"]: parts must not be empty, '.' or '..'");
     }
-    JobInput host_file = input_;
-    host_file.job_yaml = "name: box\nmodel:\n  mesh: " + (dir_ / "box.vtk").string() + "\n";
+    JobInput clash = input_;
+    clash.files.push_back({"box.vtk/inner.txt", "x"});
     try {
-        store.submit(host_file);
+        store.submit(clash);
         FAIL() << "expected an error";
     } catch (const JobInputError& e) {
-        EXPECT_THAT(e.what(), HasSubstr("job.yaml: model.mesh: must name a file submitted with"));
+        EXPECT_STREQ(e.what(),
+                     "files[\"box.vtk/inner.txt\"]: lies in \"box.vtk\", which is a file of the job");
+    }
+    JobInput long_part = input_;
+    long_part.files.push_back({"d/" + std::string(256, 'p'), "x"});
+    try {
+        store.submit(long_part);
+        FAIL() << "expected an error";
+    } catch (const JobInputError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("a part of the name is longer than 255 bytes"));
+    }
+    // A file of the host and a file that does not exist get the same answer: no existence oracle.
+    for (const std::string& mesh : {(dir_ / "box.vtk").string(), (dir_ / "nothing.vtk").string(),
+                                    std::string("nothing.vtk"), std::string("../box.vtk")}) {
+        JobInput host_file = input_;
+        host_file.job_yaml = "name: box\nmodel:\n  mesh: " + mesh + "\n";
+        try {
+            store.submit(host_file);
+            FAIL() << "expected an error for " << mesh;
+        } catch (const config::ConfigError& e) {
+            EXPECT_THAT(e.what(), HasSubstr("job.yaml: line 3: model.mesh: must name a file "
+                                            "submitted with the job, not " +
+                                            mesh));
+        }
     }
     EXPECT_TRUE(store.list().empty());
     EXPECT_EQ(
@@ -367,6 +392,24 @@ TEST_F(JobStoreTest, StateJsonFollowsThePrintsProgress) {
     EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["last_confirmed_event"], 7);
     store.confirm_progress(id, 3);  // never backwards
     EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["last_confirmed_event"], 7);
+}
+
+TEST_F(JobStoreTest, AFaultsReasonStaysWhileItHoldsTheJobAndGoesWhenThePrintGoesOn) {
+    JobStore store(options());
+    const auto id = printing_job(store);
+    store.apply(id, JobAction::faulted, "robot heartbeat lost for 5026 ms");
+    EXPECT_EQ(store.get(id).reason, "robot heartbeat lost for 5026 ms");
+    store.request(id, JobAction::resume);
+    EXPECT_EQ(store.get(id).reason, "");  // starting again: the fault is over
+    store.apply(id, JobAction::print_done, "");
+    EXPECT_EQ(store.get(id).state, JobState::completed);
+    EXPECT_EQ(nlohmann::json::parse(read_file(state_file(id)))["reason"], "");
+    // A paused job that then fails without a word of its own keeps the fault that paused it.
+    const auto other = store.submit(input_).id;
+    drive(store, other, JobState::printing);
+    store.apply(other, JobAction::faulted, "the extruder board is not connected");
+    store.apply(other, JobAction::print_failed, "");
+    EXPECT_EQ(store.get(other).reason, "the extruder board is not connected");
 }
 
 TEST_F(JobStoreTest, AJobWhoseJournalIsLostResumesOnlyOnTheOperatorsWord) {

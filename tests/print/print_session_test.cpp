@@ -92,6 +92,15 @@ TEST_F(PrintCellTest, ModbusLinkDroppedMidPrintHoldsTheRobotAndTheJobResumes) {
     double fed = 0;
     for (const auto& p : pieces) fed += std::stod(p.substr(4));
     EXPECT_NEAR(fed + session_->poll().sync.stats.feed_left_at_cut_mm, 58.0, 1e-6);
+    // What was not fed is the path's shortfall, kept by the session across the engine the resume
+    // replaced.
+    const auto stats = session_->poll().sync.stats;
+    if (stats.feed_left_at_cut_mm > 0.05) {
+        ASSERT_FALSE(stats.shortfalls.empty());
+        EXPECT_EQ(stats.shortfalls.front().kind, daemon::sync::ShortfallKind::fibre_feed_dropped);
+        EXPECT_EQ(stats.shortfalls.front().sequence, first_of(program, EventKind::fibre_start));
+        EXPECT_DOUBLE_EQ(stats.shortfalls.front().mm, stats.feed_left_at_cut_mm);
+    }
 }
 
 TEST_F(PrintCellTest, OnePercentCorruptedSerialLinesLeaveTheBoardLogIdentical) {

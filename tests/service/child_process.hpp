@@ -23,15 +23,22 @@ namespace fibrecell::test {
 
 class ChildProcess {
   public:
-    ChildProcess(const std::string& program, std::vector<std::string> args, std::filesystem::path log)
+    // With `piped_stdin` the child reads what send_line() writes; else its stdin is /dev/null.
+    ChildProcess(const std::string& program, std::vector<std::string> args, std::filesystem::path log,
+                 bool piped_stdin = false)
         : log_(std::move(log)) {
         const int fd = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
         if (fd < 0) throw std::runtime_error("cannot open " + log_.string());
+        int in[2] = {-1, -1};
+        if (piped_stdin && ::pipe2(in, O_CLOEXEC) != 0) throw std::runtime_error("cannot make a pipe");
         posix_spawn_file_actions_t actions;
         posix_spawn_file_actions_init(&actions);
         posix_spawn_file_actions_adddup2(&actions, fd, 1);
         posix_spawn_file_actions_adddup2(&actions, fd, 2);
-        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+        if (piped_stdin)
+            posix_spawn_file_actions_adddup2(&actions, in[0], 0);
+        else
+            posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
         args.insert(args.begin(), program);
         std::vector<char*> argv;
         for (std::string& a : args) argv.push_back(a.data());
@@ -39,9 +46,22 @@ class ChildProcess {
         const int rc = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
         posix_spawn_file_actions_destroy(&actions);
         ::close(fd);
+        if (piped_stdin) {
+            ::close(in[0]);
+            stdin_ = in[1];
+        }
         if (rc != 0) throw std::runtime_error("cannot start " + program);
     }
-    ~ChildProcess() { kill_now(); }
+    ~ChildProcess() {
+        kill_now();
+        if (stdin_ >= 0) ::close(stdin_);
+    }
+    // One line to the child's stdin (piped_stdin only); false when it could not be written.
+    bool send_line(const std::string& text) {
+        const std::string line = text + "\n";
+        return stdin_ >= 0 && ::write(stdin_, line.data(), line.size()) ==
+                                  static_cast<ssize_t>(line.size());
+    }
     ChildProcess(const ChildProcess&) = delete;
     ChildProcess& operator=(const ChildProcess&) = delete;
 
@@ -87,6 +107,7 @@ class ChildProcess {
     std::filesystem::path log_;
     pid_t pid_ = -1;
     int exit_status_ = 0;
+    int stdin_ = -1;
 };
 
 }  // namespace fibrecell::test

@@ -17,16 +17,17 @@ namespace fibrecell::test {
 
 class ExternalCell {
   public:
-    ExternalCell(const fs::path& dir, double time_scale)
+    // With `board_control`, board_command() injects the mock board's faults (its stdin).
+    ExternalCell(const fs::path& dir, double time_scale, bool board_control = false)
         : board_log_(dir / "board.log"), trajectory_(dir / "trajectory.csv"), tty_(dir / "ttyGT2560") {
         const std::string bin = FIBRECELL_BINARY_DIR;
         const std::string scale = std::to_string(time_scale);
-        board_ = std::make_unique<ChildProcess>(
-            bin + "/tools/mock-gt2560",
-            std::vector<std::string>{"--daemon", "--link", tty_.string(), "--time-scale", scale,
-                                     "--bootloader-s", "0.2", "--hotend-tau-s", "2",
-                                     "--residency-s", "0.5", "--log", board_log_.string()},
-            dir / "mock.log");
+        std::vector<std::string> board_args{"--link", tty_.string(), "--time-scale", scale,
+                                            "--bootloader-s", "0.2", "--hotend-tau-s", "2",
+                                            "--residency-s", "0.5", "--log", board_log_.string()};
+        if (!board_control) board_args.insert(board_args.begin(), "--daemon");
+        board_ = std::make_unique<ChildProcess>(bin + "/tools/mock-gt2560", board_args,
+                                                dir / "mock.log", board_control);
         robot_ = std::make_unique<ChildProcess>(
             bin + "/tools/fibrecell-simcell/fibrecell-simcell",
             std::vector<std::string>{"--time-scale", scale, "--trajectory", trajectory_.string()},
@@ -71,6 +72,20 @@ class ExternalCell {
         replace("residency_s: 0.5}", "residency_s: 0.5, devices: external}");
         return text + "extruder: {link: {port: " + tty_.string() + "}}\n" +
                "rws: {port: " + std::to_string(rws_port_) + "}\n" + extra;
+    }
+
+    // A fault of the mock board ("reset", "unplug", "replug", ...: mock-gt2560's stdin
+    // commands); waits until the board has done it.
+    bool board_command(const std::string& command) {
+        const std::string done = "done " + command.substr(0, command.find(' '));
+        const auto count = [&] {
+            const std::string log = board_->log();
+            std::size_t n = 0;
+            for (auto at = log.find(done); at != std::string::npos; at = log.find(done, at + 1)) ++n;
+            return n;
+        };
+        const std::size_t before = count();
+        return board_->send_line(command) && eventually([&] { return count() > before; }, 10s);
     }
 
     const fs::path& board_log() const { return board_log_; }

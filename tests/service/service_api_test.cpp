@@ -43,6 +43,13 @@ TEST_F(ServiceTest, BadRequestsGetTheirErrorsAndTheServiceGoesOn) {
     EXPECT_EQ(error_code([&] { c.call("job.submit", {{"job_yaml", "name: x\n"}, {"bogus", 1}}); }), -32602);
     EXPECT_EQ(error_code([&] { c.call("job.submit", {{"job_yaml", "name: x\nmodel: {mesh: none.vtk}\n"}}); }),
               -32602);  // names a file that was not sent
+    // File names the file system cannot hold are the caller's error, not the service's.
+    const json clash = {{"job_yaml", "name: x\nmodel: {mesh: a.vtk}\n"},
+                        {"files", {{"a.vtk", "eA=="}, {"a.vtk/b", "eA=="}}}};
+    EXPECT_EQ(error_code([&] { c.call("job.submit", clash); }), -32602);
+    const json long_part = {{"job_yaml", "name: x\nmodel: {mesh: a.vtk}\n"},
+                            {"files", {{"a.vtk", "eA=="}, {std::string(300, 'p'), "eA=="}}}};
+    EXPECT_EQ(error_code([&] { c.call("job.submit", long_part); }), -32602);
     EXPECT_EQ(error_code([&] { c.call("job.pause"); }), -32003);  // nothing on the cell
     // A request above api.max_request_bytes (4 MiB) is answered and the connection closed.
     c.send_line(json{{"jsonrpc", "2.0"}, {"id", 7}, {"method", "job.submit"},
@@ -102,6 +109,29 @@ TEST_F(ServiceTest, AJobIsPlannedAndPrintedWhileTwoClientsWatchIt) {
         EXPECT_TRUE(planning_progress);
         EXPECT_TRUE(print_progress);
     }
+}
+
+TEST_F(ServiceTest, APrintThatFellShortOfItsPlanEndsCompletedWithWarnings) {
+    // Every cut counts as late at this bound: each is a shortfall of the print.
+    start_service(write_config("print: {late_cut_mm: 0.000001}\n"));
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    const json done = wait_for_state(c, id, "completed_with_warnings", 120s);
+    ASSERT_EQ(done.value("state", ""), "completed_with_warnings") << done.dump(2) << service_->log();
+    EXPECT_THAT(done.value("reason", ""), HasSubstr("from the plan: cut at event "));
+    EXPECT_THAT(done.value("reason", ""), HasSubstr("(result.json: shortfalls)"));
+    const json& shortfalls = done["result"]["shortfalls"];
+    ASSERT_TRUE(shortfalls.is_array());
+    ASSERT_FALSE(shortfalls.empty());
+    for (const json& f : shortfalls) {
+        EXPECT_EQ(f.value("kind", ""), "late_cut");
+        EXPECT_GT(f.value("mm", 0.0), 0.0);
+        EXPECT_GE(f.value("layer", 0), 1);
+    }
+    EXPECT_EQ(done["result"]["events_done"], done["result"]["events"]);  // it did end
+    // The job's state on disk says the same.
+    const json disk = json::parse(read_file(state_dir() / "jobs" / std::to_string(id) / "state.json"));
+    EXPECT_EQ(disk.value("state", ""), "completed_with_warnings");
 }
 
 TEST_F(ServiceTest, AJobThatCannotBePlannedFailsWhileAnotherPrints) {

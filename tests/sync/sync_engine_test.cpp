@@ -231,6 +231,44 @@ TEST_F(SyncEngineTest, PauseInsideAFibrePathLosesAndRepeatsNoFeed) {
     EXPECT_FALSE(s.paused);
 }
 
+TEST_F(SyncEngineTest, ARobotThatOutrunsTheFeedLeavesShortfallsOnItsPath) {
+    boot();
+    SyncOptions o;
+    o.late_cut_mm = 1e-6;  // any cut the robot did not stand for is late here
+    start_engine(o);
+    Expected expect;
+    expect.start();
+    play(expect, head_switch_pla, head_switch_ccf);
+    ASSERT_FALSE(ev(cut).barrier);  // the robot runs on through the cut
+    // The robot reaches the cut right after the fibre's start: the feed cannot have kept up.
+    robot_at(fibre_start);
+    robot_at(cut);
+    confirmed(cut);
+    const SyncStatus s = engine_->status();
+    ASSERT_EQ(s.stats.feed_left_at_cut, 1u);
+    EXPECT_GT(s.stats.feed_left_at_cut_mm, 10.0);
+    EXPECT_EQ(s.stats.late_cuts, 1u);
+    ASSERT_EQ(s.stats.shortfalls.size(), 2u);
+    const auto& dropped = s.stats.shortfalls[0];
+    EXPECT_EQ(dropped.kind, daemon::sync::ShortfallKind::fibre_feed_dropped);
+    EXPECT_EQ(dropped.sequence, fibre_start);
+    EXPECT_EQ(dropped.layer, ev(fibre_start).layer);
+    EXPECT_EQ(dropped.path, ev(fibre_start).path);
+    EXPECT_DOUBLE_EQ(dropped.mm, s.stats.feed_left_at_cut_mm);
+    // What the board fed plus what was dropped is the path.
+    const auto log = executed_job();
+    const auto thread_end =
+        static_cast<std::size_t>(std::find(log.begin(), log.end(), "M400") - log.begin());
+    const auto cut_start = static_cast<std::size_t>(
+        std::find(log.begin() + static_cast<std::ptrdiff_t>(thread_end) + 1, log.end(), "M400") -
+        log.begin());
+    EXPECT_NEAR(sum_e(log, thread_end + 1, cut_start) + dropped.mm, 58.0, 1e-6);
+    const auto& late = s.stats.shortfalls[1];
+    EXPECT_EQ(late.kind, daemon::sync::ShortfallKind::late_cut);
+    EXPECT_EQ(late.sequence, cut);
+    EXPECT_GT(late.mm, 0.0);
+}
+
 TEST_F(SyncEngineTest, ABarrierReachedWhilePausedIsReleasedOnResume) {
     boot();
     start_engine();

@@ -85,7 +85,8 @@ std::string duration_text(double seconds) {
 }
 
 bool is_final_state(const std::string& state) {
-    return state == "completed" || state == "aborted" || state == "failed";
+    return state == "completed" || state == "completed_with_warnings" || state == "aborted" ||
+           state == "failed";
 }
 
 std::string jobs_table(const json& jobs) {
