@@ -88,6 +88,7 @@ struct PrintRunner::Active {
     bool reselect_tool = false;  // the board restarted: its tool is the default one
     std::atomic<std::int64_t> last_confirmed{0};
     std::atomic<int> layer{-1};
+    int layer_saved = -1;  // the layer of the last confirm_progress (the runner's thread only)
     sync::SyncStatus sync;  // as of the last poll
 };
 
@@ -372,12 +373,10 @@ void PrintRunner::start_job(std::int64_t id) {
     a->session = std::make_unique<print::PrintSession>(a->plan.program, a->plan.chunks,
                                                        devices_.links(), po);
     Active* raw = a.get();
-    a->session->on_event_done([this, raw, id](const sync::EventDone& d) {
+    a->session->on_event_done([raw](const sync::EventDone& d) {
         // On the engine's thread, in order: on the disk before the next event is taken.
         raw->journal->confirmed({d.sequence, d.kind, d.layer, d.path});
         raw->last_confirmed = d.sequence;
-        // state.json follows at every layer: a lost journal still says how far the print got.
-        if (d.layer >= 0 && d.layer != raw->layer) store_.confirm_progress(id, d.sequence);
         if (d.layer >= 0) raw->layer = d.layer;
     });
     devices_.set_print(a->session.get());
@@ -402,6 +401,19 @@ void PrintRunner::poll_active() {
     Active& a = *active_;
     lock.unlock();
     const print::PrintStatus st = a.session->poll();
+    // state.json follows at every layer, so a lost journal still says how far the print got.
+    // Written here, not on the engine's thread: its fsyncs took the engine 0.5 s on a busy disk,
+    // long enough for the robot to outrun the feed.
+    if (const int layer = a.layer.load(); layer >= 0 && layer != a.layer_saved) {
+        a.layer_saved = layer;
+        try {
+            store_.confirm_progress(a.id, a.last_confirmed.load());
+        } catch (const std::exception& e) {
+            // A full disk or an I/O error: the print may not go on unrecorded. The cell is made
+            // safe as for a device fault (robot held, feed stopped); resume once it is mended.
+            hold_on_fault(a, std::string("the job's state cannot be saved: ") + e.what());
+        }
+    }
     lock.lock();
     a.sync = st.sync;
     const json progress = progress_json();
@@ -420,12 +432,7 @@ void PrintRunner::poll_active() {
             return;
         }
         case print::PrintPhase::faulted:
-            if (!a.fault_reported) {
-                a.fault_reported = true;
-                a.paused_since = Clock::now();
-                spdlog::error("print.fault job {}: {}", a.id, st.reason);
-                store_.apply(a.id, JobAction::faulted, st.reason);
-            }
+            hold_on_fault(a, st.reason);
             break;
         default: break;
     }
@@ -438,6 +445,19 @@ void PrintRunner::poll_active() {
                                  "M104 T" + std::to_string(x.ccf_tool) + " S0"});
         a.heaters_off = true;
     }
+}
+
+void PrintRunner::hold_on_fault(Active& a, const std::string& reason) {
+    if (a.fault_reported) return;
+    try {
+        a.session->pause();
+    } catch (const std::exception&) {
+        // Not printing: already held by a fault of its own.
+    }
+    a.fault_reported = true;
+    a.paused_since = Clock::now();
+    spdlog::error("print.fault job {}: {}", a.id, reason);
+    store_.apply(a.id, JobAction::faulted, reason);
 }
 
 // The print ended (completed or aborted): its figures go to result.json beside state.json.

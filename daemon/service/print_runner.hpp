@@ -92,6 +92,7 @@ class PrintRunner {
     void handle(Command& c);
     void start_job(std::int64_t id);
     void reconnect_board(Active& a);
+    void hold_on_fault(Active& a, const std::string& reason);
     void poll_active();
     void finish(const std::string& outcome_reason);
     nlohmann::json progress_json() const;  // lock held

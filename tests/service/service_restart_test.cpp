@@ -125,7 +125,7 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     const std::size_t held_rows = rows_when_held(c, trajectory);
     ASSERT_EQ(c.call("job.resume", {{"job", id}}).value("state", ""), "starting");
     const json done = wait_for_state(c, id, "completed", 180s);
-    ASSERT_EQ(done.value("state", ""), "completed") << done.dump(2) << "\n" << service_->log();
+    ASSERT_TRUE(printed(done)) << done.dump(2) << "\n" << service_->log();
 
     // The journal: the first run confirmed 1..last in order; the resumed run re-entered at or
     // before last + 1 and confirmed every event from there to the end, once.

@@ -33,7 +33,7 @@ inline daemon::CellConfig sim_cell_config(const std::filesystem::path& state_dir
     c.simulation.trajectory_samples = 1'000'000;  // tests measure along the whole path
     c.robot_io.poll_period = 2ms;
     c.robot_io.stable_reads = 1;
-    c.robot_io.response_timeout = 200ms;
+    c.robot_io.response_timeout = 1000ms;  // in-process on a loaded machine: no false link losses
     c.robot_io.heartbeat_period = 20ms;
     c.robot_io.robot_heartbeat_timeout = 500ms;
     c.robot_io.reconnect_backoff_min = 20ms;
