@@ -64,6 +64,11 @@ Section::Section(YAML::Node node, std::string path, std::shared_ptr<const std::s
     : node_(std::move(node)), path_(std::move(path)), origin_(std::move(origin)) {
     if (node_ && !node_.IsNull() && !node_.IsMap())
         fail_here("must be a mapping of keys to values, not " + describe_value(node_));
+    if (node_ && node_.IsMap())
+        for (const auto& kv : node_)
+            if (!kv.first.IsScalar())
+                throw ConfigError(where(kv.first) + ": " + (path_.empty() ? "document" : path_) +
+                                  ": a key must be a plain name, not " + describe_value(kv.first));
 }
 
 bool Section::has(std::string_view key) const {

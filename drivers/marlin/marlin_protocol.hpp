@@ -133,7 +133,6 @@ class MarlinProtocol {
     std::int64_t first_unacked_ = 0;
     std::int64_t next_to_send_ = 0;
     std::int64_t next_line_ = 0;
-    std::size_t bytes_in_flight_ = 0;
 
     bool session_started_ = false;
     bool session_synced_ = false;        // the M110 reset was acknowledged

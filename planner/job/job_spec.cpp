@@ -30,12 +30,14 @@ std::string resolve_file(Section& s, std::string_view key, const std::string& ba
     const std::string raw = s.get<std::string>(key);
     fs::path p(raw);
     if (p.is_relative()) p = fs::path(base_dir) / p;
+    // The error_code form: a name the file system cannot hold (too long) is just not a file.
+    std::error_code ec;
     if (files == JobFiles::submitted_only) {
         // One answer for a file outside the job and a missing one, so the host's files cannot be
         // probed through it.
-        if (!lies_inside(fs::absolute(base_dir), fs::absolute(p)) || !fs::is_regular_file(p))
+        if (!lies_inside(fs::absolute(base_dir), fs::absolute(p)) || !fs::is_regular_file(p, ec))
             s.fail(key, "must name a file submitted with the job, not " + raw);
-    } else if (!fs::is_regular_file(p)) {
+    } else if (!fs::is_regular_file(p, ec)) {
         s.fail(key, "file not found: " + p.string());
     }
     return p.lexically_normal().string();

@@ -5,7 +5,9 @@
 namespace fibrecell::planner {
 
 TetMesh structured_tet_mesh(const StructuredMeshOptions& o) {
-    const auto [nx, ny, nz] = o.cells;
+    // Plain variables, not a structured binding: the lambdas below capture them, which Clang
+    // accepts only from version 16.
+    const int nx = o.cells[0], ny = o.cells[1], nz = o.cells[2];
     auto grid_index = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
     const Eigen::Vector3d step = o.size.cwiseQuotient(Eigen::Vector3d(nx, ny, nz));
 

@@ -20,6 +20,7 @@
 #include "drivers/abb/rws/digest.hpp"
 #include "drivers/abb/rws/in_memory_controller.hpp"
 #include "drivers/abb/rws/rws_client.hpp"
+#include "drivers/abb/rws/rws_routes.hpp"
 #include "drivers/abb/rws/rws_server.hpp"
 #include "drivers/abb/rws/url.hpp"
 #include "tests/support/eventually.hpp"
@@ -199,6 +200,39 @@ TEST(Url, FormRoundTrip) {
     EXPECT_EQ(encoded.rfind("modulepath=$HOME/a%20b.mod&value=", 0), 0u) << encoded;
     EXPECT_EQ(parse_form(encoded), f);
     EXPECT_EQ(percent_decode("a+b%2", true), "a b%2");
+}
+
+// ---- Routes -------------------------------------------------------------------------------------
+
+// Found by fuzzing (tests/fuzz/corpus/rws_http/utf8_*.http): a reply's JSON echoes request bytes
+// (an unknown target, the Host header, a module path) and threw on bytes that are not UTF-8.
+TEST(RwsRoutes, RequestBytesThatAreNotUtf8AreAnsweredNotThrown) {
+    struct HeldHere : MastershipGate {
+        bool held_by_caller() const override { return true; }
+        bool held_elsewhere() const override { return false; }
+        bool request() override { return true; }
+        void release() override {}
+    } gate;
+    InMemoryController controller;
+    const std::string replacement = "\xEF\xBF\xBD";  // U+FFFD
+
+    const RouteReply unknown =
+        route({"GET", "/rw/\xff", "", "127.0.0.1"}, controller, gate, "T_ROB1");
+    EXPECT_EQ(unknown.status, 404u);
+    EXPECT_NE(unknown.body.find("no resource /rw/" + replacement), std::string::npos)
+        << unknown.body;
+
+    const RouteReply state =
+        route({"GET", "/rw/panel/ctrlstate", "", "12\xb7.0.0.1"}, controller, gate, "T_ROB1");
+    EXPECT_EQ(state.status, 200u);
+    EXPECT_NE(state.body.find("http://12" + replacement), std::string::npos) << state.body;
+
+    const RouteReply load =
+        route({"POST", "/rw/rapid/tasks/T_ROB1?action=loadmod", "modulepath=%FF.mod", "127.0.0.1"},
+              controller, gate, "T_ROB1");
+    EXPECT_EQ(load.status, 400u);
+    EXPECT_NE(load.body.find("modulepath '" + replacement + ".mod'"), std::string::npos)
+        << load.body;
 }
 
 // ---- Client against server ---------------------------------------------------------------------

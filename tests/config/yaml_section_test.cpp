@@ -79,6 +79,14 @@ TEST(YamlSection, WrongTypeAndMissingRequired) {
                 HasSubstr("k: must be one of yes, no, got 'maybe'"));
 }
 
+TEST(YamlSection, AKeyThatIsNotAPlainNameIsAnErrorWithItsLine) {
+    // Found by the job YAML fuzz target: a list as a key threw yaml-cpp's bad conversion.
+    EXPECT_THAT(error_of("a: 1\nplanner: {[1]: 2}\n", [](Section& s) { s.section("planner"); }),
+                HasSubstr("cell.yaml: line 2: planner: a key must be a plain name, not a list"));
+    EXPECT_THAT(error_of("{a: 1}: 2\n", [](Section&) {}),
+                HasSubstr("document: a key must be a plain name, not a mapping"));
+}
+
 TEST(YamlSection, SyntaxErrorNamesLine) {
     EXPECT_THAT(error_of("a: 1\nb: [1, 2\n", [](Section&) {}), HasSubstr("cell.yaml: line"));
     EXPECT_THAT(error_of("- just\n- a list\n", [](Section&) {}), HasSubstr("must be a mapping"));

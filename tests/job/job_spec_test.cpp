@@ -120,6 +120,12 @@ TEST_F(JobSpecTest, ErrorsNameTheKey) {
                 HasSubstr("line 4: plannner: unknown key"));
     EXPECT_THAT(error("name: x\nmodel:\n  mesh: nothere.msh\n"),
                 HasSubstr("line 3: model.mesh: file not found"));
+    // Found by the job YAML fuzz target: a name too long for the file system threw
+    // filesystem_error; it is a file that is not there. And `1e21` is not a layer number.
+    EXPECT_THAT(error("name: x\nmodel:\n  mesh: " + std::string(300, 'x') + ".msh\n"),
+                HasSubstr("line 3: model.mesh: file not found"));
+    EXPECT_THAT(error(std::string(kMinimal) + "layers:\n  ccf_after_pla: [2, 1e21]\n"),
+                HasSubstr("layers.ccf_after_pla[1]: must be a whole number, not '1e21'"));
     EXPECT_THAT(error(std::string(kMinimal) + "boundary_fibres: [rim]\n"),
                 HasSubstr("boundary_fibres: names region 'rim'"));
     EXPECT_THAT(error(std::string(kMinimal) + "layers:\n  ccf_after_pla: [0]\n"),

@@ -40,6 +40,10 @@ std::optional<std::string> text_field(const Json& item, std::string_view key) {
     return std::nullopt;
 }
 
+std::string wire_text(const Json& document) {
+    return document.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 Json status_document(long long code, std::string_view msg) {
     Json doc = Json::object();
     doc["status"]["code"] = code;

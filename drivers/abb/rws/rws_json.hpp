@@ -39,6 +39,10 @@ struct Status {
 
 Json status_document(long long code, std::string_view msg);
 
+// A document as the body sent. Messages echo request bytes (a target, a Host header, a module
+// path), which need not be UTF-8: such bytes become U+FFFD instead of making the dump throw.
+std::string wire_text(const Json& document);
+
 // The status of an error body (JSON or XHTML); nothing when there is none.
 std::optional<Status> parse_status(std::string_view body);
 

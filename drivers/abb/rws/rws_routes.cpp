@@ -21,7 +21,7 @@ constexpr long long code_not_found = -3;
 constexpr long long code_bad_request = -4;
 
 RouteReply status_reply(unsigned status, long long code, std::string_view msg) {
-    return {status, json::status_document(code, msg).dump()};
+    return {status, json::wire_text(json::status_document(code, msg))};
 }
 
 RouteReply no_content() {
@@ -29,9 +29,8 @@ RouteReply no_content() {
 }
 
 RouteReply state_reply(std::string_view host, std::string_view base, Json items) {
-    return {200, json::state_document("http://" + std::string(host) + std::string(base),
-                                      std::move(items))
-                     .dump()};
+    return {200, json::wire_text(json::state_document(
+                     "http://" + std::string(host) + std::string(base), std::move(items)))};
 }
 
 std::vector<std::string> split_path(std::string_view path) {

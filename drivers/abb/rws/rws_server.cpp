@@ -292,7 +292,7 @@ Response Core::handle(const Request& req) {
         reply = route({method, target, req.body(), host}, *backend, gate, config.task);
     } catch (const std::exception& e) {
         spdlog::error("rws_sim.backend_failed {} {}: {}", method, target, e.what());
-        reply = {500, json::status_document(-5, e.what()).dump()};
+        reply = {500, json::wire_text(json::status_document(-5, e.what()))};
     }
 
     Response res(static_cast<http::status>(reply.status), req.version());

@@ -1,0 +1,7 @@
+MODULE Bad
+  PROC main()
+    IF TRUE THEN
+      WHILE FALSE DO
+    ENDIF
+  ENDPROC
+ENDMODULE
