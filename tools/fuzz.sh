@@ -31,20 +31,8 @@ else
 fi
 
 # Debian 12: clang 14; libFuzzer's runtime is in libclang-rt-dev (only recommended by clang).
-install_clang() {
-    local missing=()
-    for p in clang libclang-rt-dev; do
-        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-            missing+=("$p")
-    done
-    [ ${#missing[@]} -eq 0 ] && return 0
-    echo "fuzz: installing ${missing[*]}"
-    local sudo=()
-    [ "$(id -u)" -eq 0 ] || sudo=(sudo)
-    "${sudo[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
-        "${missing[@]}" >/dev/null
-}
+# shellcheck source=tools/apt-install.sh
+source "$root/tools/apt-install.sh"
 
 build_targets() {
     command -v ccache >/dev/null && export CMAKE_CXX_COMPILER_LAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER:-ccache}
@@ -81,7 +69,7 @@ fuzz_one() {
     printf '%-13s executions %10s  corpus %5s  nothing found\n' "$name" "${execs:-?}" "$size"
 }
 
-install_clang
+install_missing fuzz clang libclang-rt-dev
 build_targets
 echo "fuzz: ${#targets[@]} targets, ${seconds} s each"
 failed=0

@@ -64,6 +64,13 @@ JournalSummary read_journal(const std::filesystem::path& path) {
             const std::int64_t seq = j["seq"].get<std::int64_t>();
             std::int64_t& high = phase == "sending" ? s.last_sent : s.last_confirmed;
             high = std::max(high, seq);
+        } else if (phase == "fed") {
+            if (!j.contains("seq") || !j["seq"].is_number_integer() ||
+                j["seq"].get<long long>() < 1 || !j.contains("mm") || !j["mm"].is_number() ||
+                !(j["mm"].get<double>() >= 0))
+                throw JournalError(path.string() + ": line " + std::to_string(line) +
+                                   ": a fed record needs a positive integer seq and mm >= 0");
+            s.fed = JournalFed{j["seq"].get<std::int64_t>(), j["mm"].get<double>()};
         } else if (phase != "resume") {
             throw JournalError(path.string() + ": line " + std::to_string(line) +
                                ": unknown phase '" + phase + "'");
@@ -107,6 +114,18 @@ void JobJournal::resumed(std::int64_t first_event) {
     std::lock_guard lock(mu_);
     file_->append(nlohmann::json{{"phase", "resume"}, {"first_event", first_event}}.dump());
     ++summary_.records;
+}
+
+void JobJournal::fed(const JournalFed& f) {
+    std::lock_guard lock(mu_);
+    file_->append(nlohmann::json{{"seq", f.sequence}, {"phase", "fed"}, {"mm", f.mm}}.dump());
+    summary_.fed = f;
+    ++summary_.records;
+}
+
+std::optional<JournalFed> JobJournal::last_fed() const {
+    std::lock_guard lock(mu_);
+    return summary_.fed;
 }
 
 std::int64_t JobJournal::last_sent() const {

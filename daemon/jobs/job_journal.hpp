@@ -5,10 +5,13 @@
 //   {"seq":57,"kind":"cut","layer":3,"path":2,"phase":"sending"}    before its commands go out
 //   {"seq":57,"kind":"cut","layer":3,"path":2,"phase":"confirmed"}  the board acknowledged them
 //   {"phase":"resume","first_event":41}                             a resumed run re-enters here
+//   {"seq":58,"phase":"fed","mm":63.0}  fibre the board took along the fibre path of fibre_start 58
 //
 // The service writes `sending` BEFORE it sends an extruder action, so after a crash an event that
 // may have reached the board is known; `confirmed` after the sync engine's on_event_done. The last
-// confirmed event (the highest, over all runs) is where resume_point() starts from.
+// confirmed event (the highest, over all runs) is where resume_point() starts from. `fed` records
+// follow a fibre path's feed as the board answers it (the print runner writes the latest every
+// poll, off the sync engine's thread); the last one says where a re-entry lays the rest from.
 
 #include "drivers/abb/program/print_program.hpp"
 
@@ -16,6 +19,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 namespace fibrecell::config {
@@ -31,9 +35,16 @@ struct JournalEvent {
     int path = -1;
 };
 
+// The last `fed` record: `mm` of fibre fed along the path of fibre_start `sequence`.
+struct JournalFed {
+    std::int64_t sequence = 0;
+    double mm = 0;
+};
+
 struct JournalSummary {
     std::int64_t last_sent = 0;       // highest `sending` sequence (0: none)
     std::int64_t last_confirmed = 0;  // highest `confirmed` sequence (0: none)
+    std::optional<JournalFed> fed;    // the last `fed` record
     std::size_t records = 0;          // complete lines read
     bool torn_tail = false;           // the last line was cut short by a crash (ignored)
 };
@@ -60,9 +71,11 @@ class JobJournal {
     void sending(const JournalEvent& e);
     void confirmed(const JournalEvent& e);
     void resumed(std::int64_t first_event);
+    void fed(const JournalFed& f);
 
     std::int64_t last_sent() const;
     std::int64_t last_confirmed() const;
+    std::optional<JournalFed> last_fed() const;
 
   private:
     mutable std::mutex mu_;

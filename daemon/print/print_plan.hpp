@@ -35,11 +35,13 @@ struct PrintPlan {
 };
 
 // plan_dir: the job's plan directory. With `last_confirmed` set, the run re-enters after that
-// event (no chunk at all when nothing is left to print). Throws PlanRefused (manifest.hpp: the
+// event (no chunk at all when nothing is left to print), in the middle of the interrupted fibre
+// path when `fed` says how far its feed went (resume_point). Throws PlanRefused (manifest.hpp: the
 // plan is incomplete, damaged, or for a cell that changed), std::invalid_argument for a plan file
 // that does not read, RapidWriteError when the re-entry chunk cannot be written.
 PrintPlan load_print_plan(const std::filesystem::path& plan_dir, const CellConfig& cell,
-                          std::optional<std::int64_t> last_confirmed = std::nullopt);
+                          std::optional<std::int64_t> last_confirmed = std::nullopt,
+                          std::optional<FibreFed> fed = std::nullopt);
 
 // Moves [first_move, end_move) of `program` (end 0: to the end) and the events on them from
 // `first_event` on, their sequence numbers kept (the robot reports them as in the whole program).
@@ -53,7 +55,15 @@ drivers::abb::PrintProgram program_tail(const drivers::abb::PrintProgram& progra
 // straight move to the unit's travel point above its path start (where the whole program's
 // travel there ends), and the approach comes straight down: the robot never moves sideways at
 // the layer's height.
+//
+// A fibre path re-entered `fibre_fed_mm` along it: the first move rises to above that point, the
+// approach comes down onto it, the fibre_start's barrier (a new thread) stands before the rest of
+// the move it falls on, and the path goes on as planned.
 drivers::abb::PrintProgram reentry_program(const drivers::abb::PrintProgram& program,
                                            const ResumePoint& resume, std::size_t end_move = 0);
+
+// The program move a re-entry's first chunk is cut from: the travel into the unit, or the print
+// move of the fibre path that its fed fibre ends on.
+std::size_t reentry_move(const drivers::abb::PrintProgram& program, const ResumePoint& resume);
 
 }  // namespace fibrecell::daemon::print

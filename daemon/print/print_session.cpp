@@ -127,7 +127,10 @@ void PrintSession::start() {
     if (options_.resume_tool)
         await_board(links_.board.submit(links_.extruder.select(*options_.resume_tool)),
                     options_.heat_timeout, "re-entry: tool select");
-    start_engine(options_.sync.first_event);
+    if (options_.cut_before_start)
+        await_board(links_.board.submit(links_.extruder.cut()), options_.heat_timeout,
+                    "re-entry: cut of the interrupted fibre");
+    start_engine(options_.sync.first_event, options_.sync.resume_feed);
     const int chunk_count = options_.chunk_count > 0
                                 ? options_.chunk_count
                                 : options_.first_chunk - 1 + static_cast<int>(chunks_.size());

@@ -65,6 +65,9 @@ struct PrintOptions {
     // Resuming at a re-entry point: the tool the re-entered unit prints with, selected after the
     // heat-up (the board may have been reset since; its own head switch is behind the re-entry).
     std::optional<drivers::Head> resume_tool;
+    // Re-entering a fibre path: the fibre still runs from the nozzle into the part; it is cut
+    // (with the tool selected) before the robot lifts.
+    bool cut_before_start = false;
 };
 
 enum class PrintPhase { idle, printing, paused, completed, aborted, faulted };

@@ -61,6 +61,13 @@ void enter_unit(const PrintProgram& program, std::size_t e, ResumePoint& r) {
             r.fed_again.push_back(s);
 }
 
+// The first event of the unit after the one starting at index `from`; events.size() if none.
+std::size_t next_unit(const PrintProgram& program, std::size_t from) {
+    std::size_t i = from + 1;
+    while (i < program.events.size() && !starts_unit(program.events[i].kind)) ++i;
+    return i;
+}
+
 }  // namespace
 
 bool ResumePoint::done(std::int64_t sequence) const {
@@ -69,7 +76,8 @@ bool ResumePoint::done(std::int64_t sequence) const {
            std::binary_search(done_in_unit.begin(), done_in_unit.end(), sequence);
 }
 
-ResumePoint resume_point(const PrintProgram& program, std::int64_t last_confirmed) {
+ResumePoint resume_point(const PrintProgram& program, std::int64_t last_confirmed,
+                         std::optional<FibreFed> fed) {
     const auto total = static_cast<std::int64_t>(program.events.size());
     if (last_confirmed < 0 || last_confirmed > total)
         throw std::invalid_argument("last confirmed event " + std::to_string(last_confirmed) +
@@ -92,7 +100,25 @@ ResumePoint resume_point(const PrintProgram& program, std::int64_t last_confirme
         return r;
     }
     enter_unit(program, next, r);
-    return r;
+    if (r.unit != ResumeUnit::fibre_path || r.first_event > last_confirmed) return r;
+    // The fibre was threaded and the robot went on along the path: it is in the part.
+    r.cut_first = true;
+    if (!fed || fed->sequence != r.first_event || !(fed->mm > 0)) return r;
+    const ProgramEvent& start = program.events[static_cast<std::size_t>(r.first_event - 1)];
+    if (fed->mm < start.length_mm - 1e-6) {
+        r.fibre_fed_mm = fed->mm;
+        return r;
+    }
+    // Fed up to its cut: only the cut is left of the path, made before the lift.
+    const std::size_t after = next_unit(program, static_cast<std::size_t>(r.first_event - 1));
+    ResumePoint rest;
+    rest.last_confirmed = last_confirmed;
+    rest.cut_first = true;
+    if (after >= program.events.size())
+        rest.nothing_left = true;
+    else
+        enter_unit(program, after, rest);
+    return rest;
 }
 
 }  // namespace fibrecell::daemon::print

@@ -5,6 +5,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <thread>
 
@@ -162,6 +164,11 @@ json CellDevices::status() const {
                   {"running", io.running},
                   {"heartbeat", io.robot_heartbeat_ok}};
     if (!io.fault_reason.empty()) robot["fault"] = io.fault_reason;
+    // The link's worst cases since the service started (docs/robot-io.md, "Timeouts").
+    const auto ms = [](double v) { return std::round(v * 10) / 10; };
+    robot["worst"] = {{"poll_ms", ms(io.stats.poll_us_max / 1000)},
+                      {"heartbeat_gap_ms", ms(io.stats.heartbeat_gap_ms_max)},
+                      {"robot_heartbeat_gap_ms", ms(io.stats.robot_heartbeat_gap_ms_max)}};
     return {{"board", board}, {"robot", robot}};
 }
 

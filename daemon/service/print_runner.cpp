@@ -89,6 +89,7 @@ struct PrintRunner::Active {
     std::atomic<std::int64_t> last_confirmed{0};
     std::atomic<int> layer{-1};
     int layer_saved = -1;  // the layer of the last confirm_progress (the runner's thread only)
+    jobs::JournalFed fed_saved;  // the last `fed` record written (the runner's thread only)
     sync::SyncStatus sync;  // as of the last poll
 };
 
@@ -325,10 +326,13 @@ void PrintRunner::start_job(std::int64_t id) {
     auto a = std::make_unique<Active>();
     a->id = id;
     const bool resuming = record.last_confirmed_event > 0;
+    a->journal = store_.journal(id);
+    std::optional<print::FibreFed> fed;
+    if (const auto f = a->journal->last_fed()) fed = print::FibreFed{f->sequence, f->mm};
     try {
         a->plan = print::load_print_plan(
             store_.plan_dir(id), cell_,
-            resuming ? std::optional(record.last_confirmed_event) : std::nullopt);
+            resuming ? std::optional(record.last_confirmed_event) : std::nullopt, fed);
     } catch (const print::PlanRefused& e) {
         refuse(e.what());
     } catch (const std::exception& e) {
@@ -351,7 +355,6 @@ void PrintRunner::start_job(std::int64_t id) {
     } catch (const std::exception& e) {
         refuse(e.what());
     }
-    a->journal = store_.journal(id);
     a->last_confirmed = a->plan.first_event - 1;
     if (resuming) a->journal->resumed(a->plan.first_event);
 
@@ -367,9 +370,19 @@ void PrintRunner::start_job(std::int64_t id) {
     po.sync.late_cut_mm = options_.late_cut_mm;
     po.sync.first_event = a->plan.first_event;
     po.sync.skip_events = a->plan.skip_events;
-    if (a->plan.resume && !a->plan.resume->nothing_left)
-        po.resume_tool = a->plan.resume->nozzle == abb::Nozzle::pla ? drivers::Head::pla
-                                                                    : drivers::Head::ccf;
+    if (const auto& r = a->plan.resume; r && !r->nothing_left) {
+        po.resume_tool = r->nozzle == abb::Nozzle::pla ? drivers::Head::pla : drivers::Head::ccf;
+        po.cut_before_start = r->cut_first;
+        if (r->fibre_fed_mm > 0) {
+            po.sync.resume_feed = sync::ResumeFeed{r->first_event, r->fibre_fed_mm, true};
+            a->fed_saved = {r->first_event, r->fibre_fed_mm};
+        }
+        spdlog::info("print.reentry job {} at event {} (layer {}, path {}){}{}", id, r->first_event,
+                     r->layer + 1, r->path + 1, r->cut_first ? ": the fibre in the part cut first" : "",
+                     r->fibre_fed_mm > 0 ? fmt::format(", the rest laid from {:.1f} mm along it",
+                                                       r->fibre_fed_mm)
+                                         : std::string());
+    }
     a->session = std::make_unique<print::PrintSession>(a->plan.program, a->plan.chunks,
                                                        devices_.links(), po);
     Active* raw = a.get();
@@ -414,6 +427,7 @@ void PrintRunner::poll_active() {
             hold_on_fault(a, std::string("the job's state cannot be saved: ") + e.what());
         }
     }
+    save_fibre_fed(a, st.sync.metering);
     lock.lock();
     a.sync = st.sync;
     const json progress = progress_json();
@@ -444,6 +458,24 @@ void PrintRunner::poll_active() {
         devices_.board().submit({"M104 T" + std::to_string(x.pla_tool) + " S0",
                                  "M104 T" + std::to_string(x.ccf_tool) + " S0"});
         a.heaters_off = true;
+    }
+}
+
+// The journal follows a fibre path's feed, so that a re-entry after a crash lays only the rest
+// of it (resume_point). Once per poll at most: what the board took since is fed twice then.
+void PrintRunner::save_fibre_fed(Active& a, const sync::MeteringStatus& m) {
+    if (m.sequence < 1 || m.sequence > static_cast<std::int64_t>(a.plan.program.events.size()))
+        return;
+    if (a.plan.program.events[static_cast<std::size_t>(m.sequence - 1)].kind !=
+        abb::EventKind::fibre_start)
+        return;
+    if (m.sequence == a.fed_saved.sequence && m.e_fed_mm <= a.fed_saved.mm) return;
+    if (m.e_fed_mm <= 0) return;
+    try {
+        a.journal->fed({m.sequence, m.e_fed_mm});
+        a.fed_saved = {m.sequence, m.e_fed_mm};
+    } catch (const std::exception& e) {
+        hold_on_fault(a, std::string("the job's journal cannot be written: ") + e.what());
     }
 }
 

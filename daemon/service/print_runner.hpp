@@ -93,6 +93,7 @@ class PrintRunner {
     void start_job(std::int64_t id);
     void reconnect_board(Active& a);
     void hold_on_fault(Active& a, const std::string& reason);
+    void save_fibre_fed(Active& a, const sync::MeteringStatus& m);
     void poll_active();
     void finish(const std::string& outcome_reason);
     nlohmann::json progress_json() const;  // lock held

@@ -60,7 +60,7 @@ void EventProcessor::begin() {
     send(dev_.extruder.prepare(options_.hotends, false));
     spdlog::info("sync.started first_event={} events={}", options_.first_event,
                  dev_.program.events.size());
-    if (const auto& r = options_.resume_feed) {
+    if (const auto& r = options_.resume_feed; r && !r->rethread) {
         // The path a fault interrupted: the robot goes on from about where the fed feed ends.
         const ProgramEvent& e = event(r->sequence);
         if (e.kind != EventKind::fibre_start && e.kind != EventKind::extrude_on)
@@ -253,7 +253,20 @@ void EventProcessor::release(std::int64_t sequence) {
     held_barrier_.reset();
     const ProgramEvent& e = event(sequence);
     // The robot leaves the barrier now: the fibre feed is paced from here.
-    if (e.kind == EventKind::fibre_start) start_metering(e, SteadyClock::now());
+    if (e.kind != EventKind::fibre_start) return;
+    const auto now = SteadyClock::now();
+    start_metering(e, now);
+    const auto& r = options_.resume_feed;
+    if (!r || !r->rethread || r->sequence != sequence) return;
+    // Re-entered where the feed before the interruption ended: only the rest is fed.
+    try {
+        metering_->meter.skip_fed(r->e_fed_mm, now);
+    } catch (const std::invalid_argument& x) {
+        return fault("resume: " + describe(e) + ": " + x.what());
+    }
+    metering_->e_fed_mm = r->e_fed_mm;
+    spdlog::info("sync.resume_feed {} rethreaded, fed={:.5f} of {:.5f} mm", describe(e),
+                 r->e_fed_mm, metering_->meter.e_total_mm());
 }
 
 // --- Metering -----------------------------------------------------------------------------------

@@ -38,7 +38,11 @@ void validate(const SyncOptions& o, std::int64_t events_total) {
         throw std::invalid_argument("sync: skip_events must be sorted events from first_event on");
     if (o.resume_feed) {
         const ResumeFeed& r = *o.resume_feed;
-        if (r.sequence < 1 || r.sequence >= o.first_event)
+        if (r.rethread && r.sequence != o.first_event)
+            throw std::invalid_argument("sync: a rethread resume_feed event " +
+                                        std::to_string(r.sequence) + " is not first_event " +
+                                        std::to_string(o.first_event));
+        if (!r.rethread && (r.sequence < 1 || r.sequence >= o.first_event))
             throw std::invalid_argument("sync: resume_feed event " + std::to_string(r.sequence) +
                                         " is not before first_event " +
                                         std::to_string(o.first_event));

@@ -12,9 +12,13 @@
 namespace fibrecell::daemon::sync {
 
 // A path whose metering a fault interrupted: the new engine meters the rest of it first.
+// With `rethread` (a re-entry in the middle of a fibre path after a restart), `sequence` is the
+// run's first event, a fibre_start done again: the fibre is threaded anew and, once the robot
+// leaves that barrier, only the feed after `e_fed_mm` is metered.
 struct ResumeFeed {
     std::int64_t sequence = 0;  // its fibre_start or extrude_on event (before first_event)
     double e_fed_mm = 0;        // feed the board took before the fault (MeteringStatus::e_fed_mm)
+    bool rethread = false;
 };
 
 struct SyncOptions {
@@ -44,7 +48,8 @@ struct SyncOptions {
 
 // Throws std::invalid_argument naming the field: non-positive sizes, speeds or windows,
 // a negative lead, first_event outside 1..events_total + 1, a resume_feed that does not name a
-// fibre_start or extrude_on event before first_event or feeds a negative amount.
+// fibre_start or extrude_on event before first_event (a rethread: first_event itself) or feeds a
+// negative amount.
 void validate(const SyncOptions& options, std::int64_t events_total);
 
 }  // namespace fibrecell::daemon::sync

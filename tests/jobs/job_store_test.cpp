@@ -335,6 +335,34 @@ TEST_F(JobStoreTest, JournalAppendsAndReadsBack) {
     EXPECT_EQ(read_journal(path).records, 6u);
 }
 
+TEST_F(JobStoreTest, TheJournalKeepsTheLastFibreFedAndRefusesABadOne) {
+    const fs::path path = dir_ / "journal.jsonl";
+    {
+        JobJournal j(path);
+        EXPECT_FALSE(j.last_fed());
+        j.fed({8, 12.5});
+        j.confirmed({.sequence = 8, .kind = drivers::abb::EventKind::fibre_start});
+        j.fed({8, 31.25});
+        EXPECT_EQ(j.last_fed()->mm, 31.25);
+    }
+    EXPECT_THAT(read_file(path), HasSubstr(R"({"mm":31.25,"phase":"fed","seq":8})"));
+    const JournalSummary s = read_journal(path);
+    ASSERT_TRUE(s.fed);
+    EXPECT_EQ(s.fed->sequence, 8);
+    EXPECT_EQ(s.fed->mm, 31.25);
+    EXPECT_EQ(s.last_confirmed, 8);
+    EXPECT_EQ(JobJournal(path, s).last_fed()->mm, 31.25);
+
+    std::ofstream(path) << "{\"seq\":8,\"phase\":\"fed\",\"mm\":-1}\n{\"seq\":9,\"phase\":\"confirmed\"}\n";
+    try {
+        read_journal(path);
+        FAIL();
+    } catch (const JournalError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path.string() + ": line 1: a fed record needs a positive integer seq and mm >= 0");
+    }
+}
+
 TEST_F(JobStoreTest, TornJournalTailIsCutAndBadLinesAreNamed) {
     const fs::path path = dir_ / "journal.jsonl";
     std::ofstream(path) << R"({"seq":1,"phase":"confirmed"})"

@@ -198,3 +198,45 @@ TEST_F(PlanFilesTest, AReentryRewritesOnlyTheInterruptedChunk) {
     EXPECT_TRUE(done.resume->nothing_left);
     EXPECT_TRUE(done.chunks.empty());
 }
+
+TEST_F(PlanFilesTest, AFibrePathReentersWhereItsFeedEnded) {
+    // The last fibre path (y = 155 from x = 100 to 200; its collinear points merged, so one move
+    // to the cut point at x = 158, 42 mm before the end, and one to the end) with 25 mm fed: the
+    // run rises above x = 125, comes down there, waits for the new thread and goes on.
+    const auto& events = plan_.program.events;
+    std::int64_t s = 0;
+    for (const auto& e : events)
+        if (e.kind == abb::EventKind::fibre_start) s = e.sequence;
+    const ResumePoint r = resume_point(plan_.program, s, FibreFed{s, 25.0});
+    ASSERT_DOUBLE_EQ(r.fibre_fed_mm, 25.0);
+    const abb::PrintProgram run = reentry_program(plan_.program, r);
+    ASSERT_GE(run.moves.size(), 4u);
+    const abb::ProgramMove& travel = plan_.program.moves[r.first_move - 1];
+    EXPECT_EQ(run.moves[0].role, abb::MoveRole::travel);
+    EXPECT_NEAR(run.moves[0].position_mm.x(), 125, 1e-9);
+    EXPECT_NEAR(run.moves[0].position_mm.y(), 155, 1e-9);
+    EXPECT_NEAR(run.moves[0].position_mm.z(), travel.position_mm.z(), 1e-9);
+    EXPECT_EQ(run.moves[1].role, abb::MoveRole::approach);
+    EXPECT_TRUE(run.moves[1].fine);
+    EXPECT_NEAR(run.moves[1].position_mm.x(), 125, 1e-9);
+    EXPECT_NEAR(run.moves[1].position_mm.z(), plan_.program.moves[r.first_move].position_mm.z(), 1e-9);
+    EXPECT_EQ(run.moves[2].role, abb::MoveRole::print);
+    EXPECT_NEAR(run.moves[2].position_mm.x(), 158, 1e-9);
+    EXPECT_NEAR(run.moves[2].length_mm, 33, 1e-9);
+    ASSERT_FALSE(run.events.empty());
+    EXPECT_EQ(run.events[0].sequence, s);
+    EXPECT_EQ(run.events[0].kind, abb::EventKind::fibre_start);
+    EXPECT_EQ(run.events[0].move, 2u);
+    EXPECT_EQ(run.events[0].anchor, abb::EventAnchor::before);
+    // The cut at x = 158 stays where it was on the part: at the end of that move.
+    ASSERT_GE(run.events.size(), 2u);
+    EXPECT_EQ(run.events[1].kind, abb::EventKind::cut);
+    EXPECT_EQ(run.events[1].move, 2u);
+    EXPECT_NEAR(run.events[1].position_mm.x(), 158, 1e-9);
+    // Loaded as a plan, the rewritten chunk is the one holding x = 125's move, with the lift.
+    const PrintPlan p = load_print_plan(dir_, cell_, s, FibreFed{s, 25.0});
+    ASSERT_TRUE(p.resume);
+    EXPECT_EQ(p.first_event, s);
+    EXPECT_THAT(p.chunks[0].text, HasSubstr("MoveL Offs(CRobT("));
+    EXPECT_THAT(p.chunks[0].text, HasSubstr("125"));
+}

@@ -121,8 +121,42 @@ TEST_F(ResumePointTest, FibrePathInterruptedBeforeItsCutIsLaidAgain) {
     EXPECT_EQ(r.path, 0);
     EXPECT_EQ(r.first_event, 8);
     EXPECT_EQ(r.fed_again, V{8});
+    EXPECT_TRUE(r.cut_first);
     EXPECT_TRUE(r.done(7));
     EXPECT_FALSE(r.done(8));
+}
+
+// Each fibre path is 100 mm: 58 mm fed up to the cut, 42 mm (the cutter distance) dragged out.
+TEST_F(ResumePointTest, FibreInThePartIsCutFirstAndTheRestLaidFromWhereTheFeedEnded) {
+    // Threading not confirmed: the robot never left the path start; nothing to cut.
+    EXPECT_FALSE(resume_point(program_, 7).cut_first);
+    // Threaded and laying, no feed recorded: cut, then laid again from the start.
+    const ResumePoint unknown = resume_point(program_, 8);
+    EXPECT_TRUE(unknown.cut_first);
+    EXPECT_EQ(unknown.fibre_fed_mm, 0);
+    // 20 mm fed: cut, and the rest laid from 20 mm along the path.
+    const ResumePoint part = resume_point(program_, 8, FibreFed{8, 20.0});
+    EXPECT_TRUE(part.cut_first);
+    EXPECT_EQ(part.first_event, 8);
+    EXPECT_EQ(part.path, 0);
+    EXPECT_DOUBLE_EQ(part.fibre_fed_mm, 20.0);
+    // A record of another path does not count.
+    EXPECT_EQ(resume_point(program_, 8, FibreFed{11, 20.0}).fibre_fed_mm, 0);
+    // Fed up to the cut: the path is done but for the cut made first; the next path follows.
+    const ResumePoint all = resume_point(program_, 8, FibreFed{8, 58.0});
+    EXPECT_TRUE(all.cut_first);
+    EXPECT_EQ(all.path, 1);
+    EXPECT_EQ(all.first_event, 11);
+    EXPECT_EQ(all.fibre_fed_mm, 0);
+    EXPECT_TRUE(all.done(9));
+    EXPECT_TRUE(all.done(10));
+    // The layer's last path fed up to its cut: the next PLA layer.
+    const ResumePoint last = resume_point(program_, 11, FibreFed{11, 58.0});
+    EXPECT_TRUE(last.cut_first);
+    EXPECT_EQ(last.unit, ResumeUnit::pla_layer);
+    EXPECT_EQ(last.first_event, 16);
+    // PLA units never cut.
+    EXPECT_FALSE(resume_point(program_, 2).cut_first);
 }
 
 TEST_F(ResumePointTest, FibrePathCutIsDoneAndTheNextOneFollows) {

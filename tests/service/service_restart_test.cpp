@@ -2,9 +2,11 @@
 // mock GT2560 (mock-gt2560, logging every command it runs) are processes of their own, like the
 // real devices, and fibrecelld drives them through its real drivers. The service is killed with
 // SIGKILL in the middle of the print and started again: the job comes back interrupted with its
-// last confirmed event, resumes at the start of the interrupted unit and completes, and neither
-// the journal nor the board's log shows anything before the re-entry done twice. The simulated
-// robot's recorded trajectory shows the resumed run lift straight up from where it was held.
+// last confirmed event, resumes in the interrupted fibre path (the fibre in the part cut, the rest
+// laid from where its recorded feed ended) and completes; neither the journal nor the board's log
+// shows anything done twice, and the fibre the board fed is the plan's plus one re-thread. The
+// simulated robot's recorded trajectory shows the resumed run lift straight up from where it was
+// held.
 #include "external_cell.hpp"
 #include "service_fixture.hpp"
 
@@ -13,6 +15,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <map>
+#include <sstream>
+#include <utility>
 #include <set>
 #include <thread>
 #include <vector>
@@ -76,6 +81,53 @@ bool laying_fibre_after(const fs::path& p, std::int64_t at_least) {
     return r.value("kind", "") == "fibre_start" && r.value("seq", std::int64_t{0}) >= at_least;
 }
 
+// The planned events of a job: kind and length_mm by sequence (program.json's event table).
+struct PlannedEvent {
+    std::string kind;
+    double length_mm = 0;
+};
+
+std::map<std::int64_t, PlannedEvent> planned_events(const fs::path& program_json) {
+    const json p = json::parse(read_file(program_json));
+    const auto& cols = p.at("event_columns");
+    const auto col = [&](const std::string& name) {
+        return static_cast<std::size_t>(std::find(cols.begin(), cols.end(), name) - cols.begin());
+    };
+    std::map<std::int64_t, PlannedEvent> out;
+    for (const auto& row : p.at("events"))
+        out[row.at(col("sequence")).get<std::int64_t>()] = {
+            row.at(col("kind")).get<std::string>(), row.at(col("length_mm")).get<double>()};
+    return out;
+}
+
+// The journal's last `fed` record: {fibre_start, mm}; {0, 0} when none.
+std::pair<std::int64_t, double> last_fed(const fs::path& p) {
+    std::ifstream in(p);
+    std::string line;
+    std::pair<std::int64_t, double> fed{0, 0};
+    while (std::getline(in, line)) {
+        if (line.find("\"fed\"") == std::string::npos || line.back() != '}') continue;
+        const json r = json::parse(line);
+        fed = {r.value("seq", std::int64_t{0}), r.value("mm", 0.0)};
+    }
+    return fed;
+}
+
+// Fibre the board fed, from its own log: the E of every G1 E it ran with the fibre's tool (T1).
+double fibre_fed_mm(const std::string& log) {
+    std::istringstream in(log);
+    std::string line;
+    bool fibre_tool = false;
+    double fed = 0;
+    while (std::getline(in, line)) {
+        const std::string cmd = line.substr(line.find('\t') + 1);
+        if (cmd == "T0") fibre_tool = false;
+        if (cmd == "T1") fibre_tool = true;
+        if (fibre_tool && cmd.rfind("G1 E", 0) == 0) fed += std::stod(cmd.substr(4));
+    }
+    return fed;
+}
+
 Journal read_journal(const fs::path& p) {
     Journal j;
     std::ifstream in(p);
@@ -108,13 +160,25 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
         id = submit_bar(c, true);
         ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing") << service_->log();
         events = c.call("job.get", {{"job", id}})["print"].value("events", std::int64_t{0});
-        // Well into the print, with the robot laying a fibre (threaded, moving along the path):
-        // then the plug is pulled. FcMain holds the robot on the lost heartbeat, in that path.
+        // Well into the print, with the robot laying a fibre (threaded, moving along the path,
+        // at least 25 mm fed and at least 15 mm still to feed before the cut): then the plug is
+        // pulled. FcMain holds the robot on the lost heartbeat, in that path.
         const fs::path journal = state_dir() / "jobs" / std::to_string(id) / "journal.jsonl";
-        ASSERT_TRUE(eventually([&] { return laying_fibre_after(journal, 12); }, 120s, 2ms))
-            << read_file(journal);
+        const auto planned = planned_events(state_dir() / "jobs" / std::to_string(id) / "plan" / "program.json");
+        ASSERT_TRUE(eventually([&] {
+            if (!laying_fibre_after(journal, 12)) return false;
+            const auto [seq, mm] = last_fed(journal);
+            const auto e = planned.find(seq);
+            // The record is of the path being laid: its fibre_start is the last event confirmed.
+            return e != planned.end() && laying_fibre_after(journal, seq) &&
+                   !laying_fibre_after(journal, seq + 1) && mm >= 25 && mm <= e->second.length_mm - 15;
+        }, 120s, 2ms)) << read_file(journal);
     }
     service_->kill_now();
+    const fs::path journal = state_dir() / "jobs" / std::to_string(id) / "journal.jsonl";
+    const auto [interrupted_path, fed_before] = last_fed(journal);
+    std::printf("killed with %.1f mm fed along the fibre path of event %lld\n", fed_before,
+                static_cast<long long>(interrupted_path));
 
     start_service(dir_ / "cell.yaml");
     auto c = client();
@@ -142,12 +206,24 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     // Nothing before the re-entered unit was done again.
     for (std::int64_t s : j.after_resume) EXPECT_GE(s, j.resume_first_event);
 
-    // The board: the fibre threaded once per fibre path, plus at most the re-entered one.
+    // The board: the fibre threaded once per fibre path and once more for the rest of the
+    // interrupted one, which was cut before the lift: as many threads as cuts.
     const std::string log = read_file(board_log);
     std::size_t threads = 0, cuts = 0;
     for (std::size_t at = 0; (at = log.find("M42 P11 S255", at)) != std::string::npos; ++at) ++cuts;
     for (std::size_t at = 0; (at = log.find("G1 E42.00000", at)) != std::string::npos; ++at) ++threads;
-    EXPECT_LE(threads, cuts + 1);
+    EXPECT_EQ(threads, cuts);
+    // Fibre fed = planned (each path's feed up to its cut and its 42 mm thread) plus the one
+    // re-thread, within what the journal's last record lagged behind the board (a poll, 0.1 s:
+    // 5 mm of path at 10x) and the board's queue lost to the reset when the port reopened.
+    double planned_mm = 0;
+    for (const auto& [seq, e] : planned_events(state_dir() / "jobs" / std::to_string(id) / "plan" / "program.json"))
+        if (e.kind == "fibre_start") planned_mm += e.length_mm + 42;
+    const double fed_mm = fibre_fed_mm(log);
+    if (std::getenv("FIBRECELL_TEST_SHOW_LOG")) std::printf("%s\n", service_->log().c_str());
+    std::printf("fibre fed %.1f mm, planned %.1f mm, one re-thread 42 mm: %+.1f mm\n", fed_mm,
+                planned_mm, fed_mm - planned_mm - 42);
+    EXPECT_NEAR(fed_mm, planned_mm + 42, 10) << "fed before the kill: " << fed_before << " mm";
 
     // The robot: the resumed run's first motion is the lift, straight up by the travel clearance
     // (5 mm) from where the robot was held; the next one leaves that height upwards or level.

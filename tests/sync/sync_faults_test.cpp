@@ -134,6 +134,46 @@ TEST_F(SyncFaultTest, ANewEngineResumesAnInterruptedFibreFeedWithNothingLostOrRe
     EXPECT_EQ(s.stats.feed_left_at_cut, 0u);
 }
 
+// A re-entry after a restart in the middle of a fibre path: the run starts at the path's
+// fibre_start, threads the fibre anew, and meters only the feed after what the board took before.
+TEST_F(SyncFaultTest, ARethreadedFibrePathFeedsOnlyWhatWasNotFedBefore) {
+    constexpr int fibre_start = 6, cut = 7, layer1_end = 9;
+    boot();
+    SyncOptions o;
+    o.first_event = fibre_start;
+    const std::vector<std::string> all = metered_pieces(58, 1.0, 5, 1);
+    constexpr std::size_t done_before = 20;
+    double fed = 0;
+    for (std::size_t i = 0; i < done_before; ++i) fed += std::stod(all[i].substr(4));
+    o.resume_feed = daemon::sync::ResumeFeed{fibre_start, fed, true};
+    start_engine(o);
+    robot_at(fibre_start);  // the barrier: threaded (G1 E42, M400), then released
+    ASSERT_TRUE(eventually([&] {
+        const SyncStatus s = engine_->status();
+        return s.metering.active && s.metering.pieces_sent == s.metering.pieces_total &&
+               s.metering.pieces_unanswered == 0;
+    }));
+    EXPECT_NEAR(engine_->status().metering.e_fed_mm, 58, 1e-6);  // before and now
+    for (int n = cut; n <= layer1_end; ++n) robot_at(n);
+    confirmed(layer1_end);
+    const auto log = executed_job();
+    const auto thread_end = std::find(log.begin(), log.end(), "M400");
+    ASSERT_NE(thread_end, log.end());
+    EXPECT_EQ(std::count_if(log.begin(), thread_end,
+                            [](const std::string& l) { return l.rfind("G1 E42.00000", 0) == 0; }),
+              1);  // the thread, once
+    const auto cut_start = std::find(thread_end + 1, log.end(), "M400");
+    std::vector<std::string> fibre_pieces;
+    for (auto it = thread_end + 1; it != cut_start; ++it)
+        if (it->rfind("G1 E", 0) == 0) fibre_pieces.push_back(*it);
+    EXPECT_EQ(fibre_pieces, std::vector<std::string>(all.begin() + done_before, all.end()));
+    EXPECT_EQ(engine_->status().stats.feed_left_at_cut, 0u);
+    // A rethread names the run's first event.
+    EXPECT_THROW(SyncEngine(program_, extruder_, board_, *robot_,
+                            SyncOptions{.first_event = 7, .resume_feed = {{6, 1, true}}}),
+                 std::invalid_argument);
+}
+
 TEST_F(SyncFaultTest, AResumeFeedOnAnEventWithoutFeedIsRefused) {
     boot();
     SyncOptions o;

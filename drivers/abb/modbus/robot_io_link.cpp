@@ -12,6 +12,7 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 namespace fibrecell::drivers::abb {
@@ -32,6 +33,10 @@ enum OutputBit : unsigned {
     out_heartbeat = 16,
     out_all = 31,
 };
+
+double gap_ms(IoClock::time_point a, IoClock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 long long ms_between(IoClock::time_point a, IoClock::time_point b) {
     return duration_cast<milliseconds>(b - a).count();
@@ -112,6 +117,7 @@ struct RobotIoLink::Impl {
     StableValue barrier;
     std::optional<bool> hb_last;
     IoClock::time_point hb_last_edge{};
+    std::optional<IoClock::time_point> last_toggle;  // of heartbeat_out, this connection
     bool hb_armed = false;  // an edge was seen since start(): the watch is on
     bool hb_edge_since_connect = false;
     bool hb_lost_reported = false;
@@ -219,6 +225,7 @@ struct RobotIoLink::Impl {
         hb_edge_since_connect = false;
         hb_lost_reported = false;
         next_heartbeat = now;
+        last_toggle.reset();
         {
             std::lock_guard lock(mu);
             dirty = out_all;  // rewrite every output, pause first
@@ -326,6 +333,9 @@ struct RobotIoLink::Impl {
             }
             stall_reported = false;
         }
+        if (last_toggle)
+            stats.heartbeat_gap_ms_max = std::max(stats.heartbeat_gap_ms_max, gap_ms(*last_toggle, now));
+        last_toggle = now;
         {
             std::lock_guard lock(mu);
             desired.heartbeat = !desired.heartbeat;
@@ -362,6 +372,9 @@ struct RobotIoLink::Impl {
         if (!hb_last) {
             hb_last = hb;
         } else if (hb != *hb_last) {
+            if (hb_edge_since_connect)
+                stats.robot_heartbeat_gap_ms_max =
+                    std::max(stats.robot_heartbeat_gap_ms_max, gap_ms(hb_last_edge, now));
             hb_last = hb;
             hb_last_edge = now;
             hb_armed = true;
@@ -425,9 +438,11 @@ struct RobotIoLink::Impl {
         next_stats = now + cfg.stats_log_period;
         spdlog::info(
             "robot_io.stats state={} polls={} requests={} writes={} events={} torn={} faults={} "
-            "connects={} poll_us_last={:.0f} poll_us_max={:.0f}",
+            "connects={} poll_us_last={:.0f} poll_us_max={:.0f} heartbeat_gap_ms_max={:.0f} "
+            "robot_heartbeat_gap_ms_max={:.0f}",
             to_string(state), stats.polls, stats.requests, stats.writes, stats.event_changes,
-            stats.torn_reads, stats.faults, stats.connects, stats.poll_us_last, stats.poll_us_max);
+            stats.torn_reads, stats.faults, stats.connects, stats.poll_us_last, stats.poll_us_max,
+            stats.heartbeat_gap_ms_max, stats.robot_heartbeat_gap_ms_max);
     }
 
     // --- the thread ----------------------------------------------------------------------------

@@ -76,6 +76,11 @@ struct RobotIoStats {
     std::uint64_t connect_failures = 0;
     double poll_us_last = 0;  // duration of the last poll cycle (all its requests)
     double poll_us_max = 0;
+    // Worst cases within a connection, what the timeouts are chosen from (docs/robot-io.md):
+    // the longest time between two heartbeat_out toggles (FcMain holds the robot beyond its
+    // heartbeat timeout) and between two heartbeat_in edges seen.
+    double heartbeat_gap_ms_max = 0;
+    double robot_heartbeat_gap_ms_max = 0;
 };
 
 struct RobotIoSnapshot {
