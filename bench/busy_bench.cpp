@@ -7,8 +7,8 @@
 // (FcMain holds the robot beyond print.heartbeat_timeout_s) and between two robot heartbeats.
 //
 //   fibrecelld --config config/cell-demo.yaml --state-dir /tmp/bb --socket /tmp/bb/api.sock &
-//   build/release/bench/busy_bench /tmp/bb/api.sock examples/tensile-bar/tensile-bar.job.yaml \
-//       examples/loop/loop.job.yaml 10 2
+//   build/release/bench/busy_bench /tmp/bb/api.sock examples/tensile-bar/tensile-bar.job.yaml
+//       examples/loop/loop.job.yaml 10 2   (one command line)
 #include "config/base64.hpp"
 #include "daemon/api/api_client.hpp"
 

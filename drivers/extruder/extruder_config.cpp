@@ -32,6 +32,8 @@ ExtruderConfig load_extruder_config(config::Section s) {
         p.long_timeout = marlin::Seconds(l.number("long_timeout_s", 300.0, 0.05, 36000, true));
         p.heating_liveness = marlin::Seconds(l.number("heating_liveness_s", 10.0, 0.05, 600, true));
         p.silence_timeout = marlin::Seconds(l.number("silence_timeout_s", 30.0, 0.05, 3600, true));
+        p.keepalive_liveness =
+            marlin::Seconds(l.number("keepalive_liveness_s", 6.0, 0.05, 3600, true));
         p.max_probes = l.integer("max_probes", 3, 1, 20);
         p.max_consecutive_resends = l.integer("max_consecutive_resends", 10, 1, 100);
         const std::string ro = l.choice("resend_ok", "detect", {"detect", "always", "never"});

@@ -34,6 +34,7 @@ void MarlinProtocol::begin_session(std::int64_t first, Clock::time_point now) {
     oks_owed_.clear();
     first_unacked_ = next_to_send_ = next_line_ = first;
     session_started_ = true;
+    keepalive_seen_ = false;  // a new session may be a different firmware
     session_synced_ = false;
     last_rx_ = now;
     enqueue("M110", now);
@@ -136,6 +137,7 @@ void MarlinProtocol::on_line(std::string_view raw, Clock::time_point now) {
             request_is_new_ = r.text.find("Line Number is not") == std::string::npos;
             break;
         case ReplyKind::busy:
+            keepalive_seen_ = true;
             if (in_flight() > 0) entry(first_unacked_).deadline_base = now;
             break;
         case ReplyKind::temperature:
@@ -308,9 +310,12 @@ void MarlinProtocol::fail(LinkFailure f, const std::string& detail) {
 }
 
 Seconds MarlinProtocol::timeout_for(const Entry& e) const {
+    const auto kept_alive = [&](Seconds t) {
+        return keepalive_seen_ ? std::min(t, settings_.keepalive_liveness) : t;
+    };
     switch (e.cls) {
-        case CommandClass::motion: return settings_.motion_timeout;
-        case CommandClass::long_running: return settings_.long_timeout;
+        case CommandClass::motion: return kept_alive(settings_.motion_timeout);
+        case CommandClass::long_running: return kept_alive(settings_.long_timeout);
         case CommandClass::heating: return settings_.heating_liveness;
         case CommandClass::normal: break;
     }

@@ -31,6 +31,10 @@ struct ProtocolSettings {
     Seconds long_timeout{300.0};      // M400, G4, M226, G28, M3/M5 (busy lines extend it)
     Seconds heating_liveness{10.0};   // M109/M190: max gap between busy/temperature lines
     Seconds silence_timeout{30.0};    // nothing at all received while a line is in flight
+    // Once the firmware has sent a busy keepalive (HOST_KEEPALIVE_FEATURE, every 2 s while a
+    // command blocks), a motion or long-running line with neither its ok nor a busy line for
+    // this long was lost on the wire: it is probed then, not after its class's timeout.
+    Seconds keepalive_liveness{6.0};
     Seconds resend_ok_wait{0.5};      // ResendOk::detect: how long to wait for the ok
     Seconds probe_settle{0.2};        // after a timeout probe: time for a late duplicate reply
     int max_probes = 3;               // consecutive ok timeouts before the link is declared dead
@@ -156,6 +160,7 @@ class MarlinProtocol {
     bool probing_ = false;
     std::int64_t probe_line_ = -1;
     int probes_ = 0;
+    bool keepalive_seen_ = false;  // a busy line came: the firmware keeps a blocking line alive
     bool settling_ = false;                   // waiting for the probe copy's late reply
     Clock::time_point settle_deadline_{};
 

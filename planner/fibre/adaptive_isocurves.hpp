@@ -22,6 +22,7 @@ struct AdaptiveIsocurves {
     double geodesic_span_mm = 0;   // D of Step 2
     double min_distance_mm = 0;    // d of the final set (or W*2 when nothing is near)
     int extractions = 0;           // how often Steps 3/5 ran
+    int counts_ruled_out = 0;      // Step 5 counts over-dense within one triangle (not extracted)
 };
 
 // One connected piece of a layer (see split_pieces) with its scalar field s (#V).

@@ -95,9 +95,9 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         out.timings.extraction += clock.lap();
         spdlog::debug(
             "fibre.piece z={:.3f} triangles={} span={:.1f}mm curves={} extractions={} "
-            "min_distance={:.3f}mm",
+            "ruled_out={} min_distance={:.3f}mm",
             layer.z, piece.mesh.triangles.size(), curves.geodesic_span_mm, curves.count,
-            curves.extractions, curves.min_distance_mm);
+            curves.extractions, curves.counts_ruled_out, curves.min_distance_mm);
         if (curves.count == 0) continue;
         connect_piece(piece, piece_sources(piece, boundary_sources, layer.vertices.size()),
                       std::move(curves.curves), options.spacing_mm, paths, out.joins);

@@ -89,7 +89,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         w.layer = {s.index, s.z, s.head, s.thickness, {}};
         out.outlines[i] = layer_outline(out.sections[i]);
         if (s.head == Head::pla) {
-            w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number, pla);
+            // pla_number is 1-based; the infill angle counts PLA layers from 0.
+            w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number - 1, pla);
         } else if (job.planner.strategy == Strategy::contour_zigzag) {
             auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
             w.layer.paths = std::move(r.paths);

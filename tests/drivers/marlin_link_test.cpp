@@ -124,6 +124,26 @@ TEST_F(MarlinLinkTest, LostOkIsRecoveredWithoutRunningAnythingTwice) {
     EXPECT_GE(link_.stats().timeouts, 3u);
 }
 
+// A lost M400 or G1 (no answer at all) is probed once the firmware's keepalive is overdue, not
+// after the 300 s / 30 s of its class: the job goes on within seconds and nothing runs twice.
+TEST_F(MarlinLinkTest, ALostBlockingLineIsProbedWhenItsKeepaliveIsOverdue) {
+    MarlinLinkConfig lc;
+    lc.protocol.keepalive_liveness = Seconds(0.5);
+    start({.keepalive_s = 0.1}, lc);
+    // A dwell long enough for a busy line: the firmware keeps blocking lines alive.
+    ASSERT_TRUE(finish(link_.submit({"G4 P300"})).ok());
+    job_start_ = mock_->executed_count();
+    const std::int64_t first = *mock_->executed().back().line + 1;
+    const std::vector<std::string> job = {"G1 E1 F300", "M400", "G1 E2 F300", "M400", "M117 done"};
+    mock_->drop_line(first + 1);  // the first M400
+    mock_->drop_line(first + 2);  // the G1 after it
+    // Within finish()'s 30 s: M400's class alone would wait 300 s.
+    const CommandOutcome out = finish(link_.submit(job));
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_EQ(executed_job(), job);
+    EXPECT_GE(link_.stats().timeouts, 2u);
+}
+
 TEST_F(MarlinLinkTest, LongHeatingWaitDoesNotTimeOut) {
     sim::MockGt2560Options mo;
     mo.time_scale = 400;  // ~4 simulated minutes of heating in about 0.6 s

@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace fibrecell::planner;
 using fibrecell::planner::testing::centre;
@@ -91,6 +93,85 @@ TEST(AdaptiveIsocurves, UniformTensionGivesStraightFibresSpacedJustOverW) {
     }
     for (const auto& c : r.curves)
         for (const auto& p : c.points) EXPECT_NEAR(p.y(), c.points.front().y(), 1e-9);  // straight
+}
+
+// A 60 x 10 mm strip whose s rises along x at slope 1, sixteen times as steep in a band at
+// x = 40.5..41 (a strip under 1 MPa with one band at 16 MPa). The isocurves are the vertical lines
+// where s takes the levels; their spacing is worked out here in 1-D, and Steps 3-6 are followed
+// as the paper states them on those numbers. The spacing is not monotone in n, so stepping down
+// from the over-dense count stops far above what a bisection between it and 1 finds.
+TEST(AdaptiveIsocurves, StepsDownAsThePaperDoesWhereTheSpacingIsNotMonotone) {
+    const LayerMesh m = grid_layer(60, 10, 120, 10);  // columns every 0.5 mm: the band's edges
+    const auto S = [](double x) {
+        return x <= 40.5 ? x : x <= 41 ? 40.5 + 16 * (x - 40.5) : 48.5 + (x - 41);
+    };
+    const auto x_of = [](double v) {
+        return v <= 40.5 ? v : v <= 48.5 ? 40.5 + (v - 40.5) / 16 : 41 + (v - 48.5);
+    };
+    std::vector<double> s;
+    for (const auto& v : m.vertices) s.push_back(S(v.x()));
+    const double w = 1.0, s_max = S(60);
+    const auto spacing = [&](int n) {  // d of Eq. 4 in 1-D, capped at 2W as the planner does
+        double d = 2 * w;
+        for (int i = 0; i + 1 < n; ++i)
+            d = std::min(d, x_of((1.5 + i) / n * s_max) - x_of((0.5 + i) / n * s_max));
+        return d;
+    };
+    int n = static_cast<int>(std::ceil(60 / w));  // Step 3: D = 60 mm
+    while (spacing(n) > w) n = static_cast<int>(std::ceil(n * spacing(n) / w));  // Step 4
+    const int over_dense = n;
+    while (n > 1 && spacing(n) <= w) --n;  // Steps 5-6
+    int fits = 1, too_dense = over_dense;  // what a bisection would have found
+    while (too_dense - fits > 1) {
+        const int mid = (fits + too_dense) / 2;
+        (spacing(mid) > w ? fits : too_dense) = mid;
+    }
+    ASSERT_GT(n, fits);
+
+    const AdaptiveIsocurves r = adaptive_isocurves(m, s, {.spacing_mm = w});
+    EXPECT_NEAR(r.geodesic_span_mm, 60, 1e-9);
+    EXPECT_EQ(r.count, n) << "over-dense at " << over_dense << ", a bisection finds " << fits;
+    EXPECT_NEAR(r.min_distance_mm, spacing(n), 1e-9);
+    std::vector<double> xs;
+    for (const auto& c : r.curves) {
+        for (const auto& p : c.points) EXPECT_NEAR(p.x(), c.points.front().x(), 1e-9);  // vertical
+        xs.push_back(c.points.front().x());
+    }
+    std::sort(xs.begin(), xs.end());
+    ASSERT_EQ(static_cast<int>(xs.size()), n);
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(xs[i], x_of((0.5 + i) / n * s_max), 1e-9);
+    // Fast: most counts on the way down are ruled out without extracting them.
+    EXPECT_GT(r.counts_ruled_out, 0);
+    EXPECT_LT(r.extractions, over_dense - n);
+    std::printf("over-dense n %d; step-down n %d (spacing %.2f mm), bisection n %d (%.2f mm); "
+                "%d extractions, %d counts ruled out\n",
+                over_dense, n, spacing(n), fits, spacing(fits), r.extractions, r.counts_ruled_out);
+}
+
+// The counts ruled out without an extraction are never ones the paper's step-down would keep:
+// on bumpy fields (steep and shallow stretches, curved level lines) the result is the one of
+// extracting every count on the way down.
+TEST(AdaptiveIsocurves, RulingOutCountsNeverChangesTheStepDown) {
+    const LayerMesh m = grid_layer(40, 12, 50, 15);
+    for (const double bump : {0.0, 0.6, 0.9, 0.97}) {
+        for (const double tilt : {0.0, 0.35}) {
+            std::vector<double> s;
+            for (const auto& v : m.vertices)
+                s.push_back(v.x() + bump * 4 * std::sin(v.x() / 4 + tilt * v.y()));
+            const double w = 1.0;
+            const AdaptiveIsocurves r = adaptive_isocurves(m, s, {.spacing_mm = w});
+            const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
+            const auto d = [&](int n) {
+                std::vector<double> iso(static_cast<std::size_t>(n));
+                for (int i = 0; i < n; ++i) iso[i] = *lo + (0.5 + i) / n * (*hi - *lo);
+                return min_neighbour_distance(extract_isocurves(m, s, iso), 2 * w);
+            };
+            int n = static_cast<int>(std::ceil(r.geodesic_span_mm / w));
+            while (d(n) > w) n = std::max(n + 1, static_cast<int>(std::ceil(n * d(n) / w)));
+            while (n > 1 && d(n) <= w) --n;
+            EXPECT_EQ(r.count, n) << "bump " << bump << " tilt " << tilt;
+        }
+    }
 }
 
 TEST(AdaptiveIsocurves, ZeroExponentGivesUniformSpacingWhateverTheStress) {

@@ -82,6 +82,22 @@ TEST_F(LayerStageTest, BarGetsAlternatingLayersAndStraightFibresAlongTheLoad) {
             EXPECT_LE(*it - *std::prev(it), 1250);
         }
     }
+    // The PLA infill turns 45 degrees per PLA layer from 0 at the first: its longest segment
+    // (a zigzag line across the bar, not a link) lies along x, then along the diagonal.
+    int pla_seen = 0;
+    for (const ToolpathLayer& layer : r.layers) {
+        if (layer.head != Head::pla) continue;
+        Eigen::Vector2d longest = Eigen::Vector2d::Zero();
+        for (const Toolpath& p : layer.paths)
+            if (p.role == PathRole::infill)
+                for (std::size_t i = 0; i + 1 < p.points.size(); ++i)
+                    if ((p.points[i + 1] - p.points[i]).norm() > longest.norm())
+                        longest = p.points[i + 1] - p.points[i];
+        ASSERT_GT(longest.norm(), 0) << "PLA layer " << pla_seen + 1 << " has no infill";
+        const double deg = std::fmod(std::atan2(longest.y(), longest.x()) * 180 / M_PI + 180, 180);
+        EXPECT_NEAR(std::min(deg, 180 - deg), pla_seen == 0 ? 0 : 45, 0.5) << "PLA layer " << pla_seen + 1;
+        ++pla_seen;
+    }
     EXPECT_EQ(r.stats.pla_layers, 2);
     EXPECT_EQ(r.stats.ccf_layers, 2);
     EXPECT_GE(r.stats.fibre_min_length_mm, 100.0 - 1e-6);  // at least one full run
