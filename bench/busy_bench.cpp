@@ -119,7 +119,8 @@ PrintFigures print_once(api::ApiClient& c, const fs::path& job) {
         std::this_thread::sleep_for(50ms);
         j = c.call("job.get", {{"job", id}});
         const std::string state = j.value("state", "");
-        if (ended(state) || state == "planned") break;  // planned again: the start was refused
+        // Back to planned with a reason: the start was refused (planned without one: on its way).
+        if (ended(state) || (state == "planned" && !j.value("reason", "").empty())) break;
         if (state == "paused") {
             ++f.self_pauses;
             std::printf("    self-pause: %s\n", j.value("reason", "").c_str());

@@ -94,38 +94,99 @@ void repair_journal(const std::filesystem::path& path) {
 JobJournal::JobJournal(const std::filesystem::path& path, const JournalSummary& summary)
     : file_(std::make_unique<config::DurableAppender>(path)), summary_(summary) {}
 
-JobJournal::~JobJournal() = default;
+JobJournal::~JobJournal() {
+    {
+        std::lock_guard lock(mu_);
+        stopping_ = true;
+    }
+    wake_.notify_all();
+    if (writer_.joinable()) writer_.join();  // the writer leaves once the queue is empty
+}
+
+// The caller holds mu_. The writer starts with the first queued record: a store holds the
+// journals of every job, most of which never get one.
+void JobJournal::queue(std::string line) {
+    queued_.push_back(std::move(line));
+    ++queued_count_;
+    if (!writer_.joinable()) writer_ = std::thread([this] { write_queued(); });
+}
+
+void JobJournal::write_queued() {
+    std::unique_lock lock(mu_);
+    for (;;) {
+        wake_.wait(lock, [&] { return stopping_ || !queued_.empty(); });
+        if (queued_.empty()) return;  // stopping, all written
+        std::vector<std::string> batch;
+        batch.swap(queued_);
+        const std::uint64_t upto = queued_count_;
+        lock.unlock();
+        // One write and one sync for the whole batch (records hold no newline).
+        std::string lines;
+        for (const std::string& l : batch) lines += (lines.empty() ? "" : "\n") + l;
+        std::optional<std::string> failed;
+        try {
+            append_now(lines);
+        } catch (const std::exception& e) {
+            failed = e.what();
+        }
+        lock.lock();
+        if (failed) failure_ = failed;
+        written_count_ = upto;
+        written_.notify_all();
+    }
+}
+
+void JobJournal::append_now(const std::string& line) {
+    std::lock_guard lock(file_mu_);
+    file_->append(line);
+}
 
 void JobJournal::sending(const JournalEvent& e) {
+    flush();
+    append_now(event_line(e, "sending"));
     std::lock_guard lock(mu_);
-    file_->append(event_line(e, "sending"));
     summary_.last_sent = std::max(summary_.last_sent, e.sequence);
     ++summary_.records;
 }
 
-void JobJournal::confirmed(const JournalEvent& e) {
+void JobJournal::resumed(std::int64_t first_event) {
+    flush();
+    append_now(nlohmann::json{{"phase", "resume"}, {"first_event", first_event}}.dump());
     std::lock_guard lock(mu_);
-    file_->append(event_line(e, "confirmed"));
-    summary_.last_confirmed = std::max(summary_.last_confirmed, e.sequence);
     ++summary_.records;
 }
 
-void JobJournal::resumed(std::int64_t first_event) {
-    std::lock_guard lock(mu_);
-    file_->append(nlohmann::json{{"phase", "resume"}, {"first_event", first_event}}.dump());
-    ++summary_.records;
+void JobJournal::confirmed(const JournalEvent& e) {
+    {
+        std::lock_guard lock(mu_);
+        queue(event_line(e, "confirmed"));
+        summary_.last_confirmed = std::max(summary_.last_confirmed, e.sequence);
+        ++summary_.records;
+    }
+    wake_.notify_one();
 }
 
 void JobJournal::fed(const JournalFed& f) {
-    std::lock_guard lock(mu_);
-    file_->append(nlohmann::json{{"seq", f.sequence}, {"phase", "fed"}, {"mm", f.mm}}.dump());
-    summary_.fed = f;
-    ++summary_.records;
+    {
+        std::lock_guard lock(mu_);
+        queue(nlohmann::json{{"seq", f.sequence}, {"phase", "fed"}, {"mm", f.mm}}.dump());
+        summary_.fed = f;
+        ++summary_.records;
+    }
+    wake_.notify_one();
 }
 
-std::optional<JournalFed> JobJournal::last_fed() const {
+void JobJournal::flush() {
+    std::unique_lock lock(mu_);
+    const std::uint64_t target = queued_count_;
+    written_.wait(lock, [&] { return written_count_ >= target; });
+}
+
+std::optional<std::string> JobJournal::take_failure() {
     std::lock_guard lock(mu_);
-    return summary_.fed;
+    std::optional<std::string> f;
+    f.swap(failure_);
+    return f;
 }
 
 std::int64_t JobJournal::last_sent() const {
@@ -136,6 +197,11 @@ std::int64_t JobJournal::last_sent() const {
 std::int64_t JobJournal::last_confirmed() const {
     std::lock_guard lock(mu_);
     return summary_.last_confirmed;
+}
+
+std::optional<JournalFed> JobJournal::last_fed() const {
+    std::lock_guard lock(mu_);
+    return summary_.fed;
 }
 
 }  // namespace fibrecell::daemon::jobs

@@ -18,9 +18,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <condition_variable>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
 
 namespace fibrecell::config {
 class DurableAppender;
@@ -61,26 +65,48 @@ JournalSummary read_journal(const std::filesystem::path& path);
 // Cuts a torn last line off, so that the next record starts on a line of its own.
 void repair_journal(const std::filesystem::path& path);
 
+// Appends records in the order given. `confirmed` and `fed` records are queued and return at
+// once: a writer thread of the journal appends what is queued and syncs once per batch, so that
+// the sync engine (whose observer writes them) never waits for the disk. A crash loses at most
+// the last batch, i.e. the re-entry starts a few events early; the journal's meaning is its
+// highest confirmed event and its last fed record, so a lost batch leaves no hole.
 class JobJournal {
   public:
     // Opens (creates) the journal for appending; `summary` is what read_journal found in it.
     JobJournal(const std::filesystem::path& path, const JournalSummary& summary = {});
-    ~JobJournal();
+    ~JobJournal();  // writes what is queued first
 
-    // Each returns once the record is on the disk. Thread-safe. Throws std::system_error.
+    // On the disk before they return. Throw std::system_error.
     void sending(const JournalEvent& e);
-    void confirmed(const JournalEvent& e);
     void resumed(std::int64_t first_event);
+    // Queued; a failed write is reported by take_failure(). Thread-safe.
+    void confirmed(const JournalEvent& e);
     void fed(const JournalFed& f);
+
+    // Returns once everything queued so far is on the disk (or failed).
+    void flush();
+    // Why the last batch could not be written (ENOSPC, EIO), once; nothing when all went well.
+    std::optional<std::string> take_failure();
 
     std::int64_t last_sent() const;
     std::int64_t last_confirmed() const;
     std::optional<JournalFed> last_fed() const;
 
   private:
+    void queue(std::string line);
+    void write_queued();
+    void append_now(const std::string& line);
+
     mutable std::mutex mu_;
+    std::condition_variable wake_, written_;
+    std::vector<std::string> queued_;
+    std::uint64_t queued_count_ = 0, written_count_ = 0;
+    std::optional<std::string> failure_;
+    bool stopping_ = false;
+    std::mutex file_mu_;  // one append at a time: the writer's batches and the direct records
     std::unique_ptr<config::DurableAppender> file_;
     JournalSummary summary_;
+    std::thread writer_;
 };
 
 }  // namespace fibrecell::daemon::jobs

@@ -387,7 +387,7 @@ void PrintRunner::start_job(std::int64_t id) {
                                                        devices_.links(), po);
     Active* raw = a.get();
     a->session->on_event_done([raw](const sync::EventDone& d) {
-        // On the engine's thread, in order: on the disk before the next event is taken.
+        // On the engine's thread, in order; queued, so the engine never waits for the disk.
         raw->journal->confirmed({d.sequence, d.kind, d.layer, d.path});
         raw->last_confirmed = d.sequence;
         if (d.layer >= 0) raw->layer = d.layer;
@@ -428,6 +428,8 @@ void PrintRunner::poll_active() {
         }
     }
     save_fibre_fed(a, st.sync.metering);
+    if (const auto failed = a.journal->take_failure())
+        hold_on_fault(a, "the job's journal cannot be written: " + *failed);
     lock.lock();
     a.sync = st.sync;
     const json progress = progress_json();
@@ -471,12 +473,8 @@ void PrintRunner::save_fibre_fed(Active& a, const sync::MeteringStatus& m) {
         return;
     if (m.sequence == a.fed_saved.sequence && m.e_fed_mm <= a.fed_saved.mm) return;
     if (m.e_fed_mm <= 0) return;
-    try {
-        a.journal->fed({m.sequence, m.e_fed_mm});
-        a.fed_saved = {m.sequence, m.e_fed_mm};
-    } catch (const std::exception& e) {
-        hold_on_fault(a, std::string("the job's journal cannot be written: ") + e.what());
-    }
+    a.journal->fed({m.sequence, m.e_fed_mm});  // queued: a failed write shows in poll_active
+    a.fed_saved = {m.sequence, m.e_fed_mm};
 }
 
 void PrintRunner::hold_on_fault(Active& a, const std::string& reason) {
@@ -501,6 +499,7 @@ void PrintRunner::finish(const std::string& outcome_reason) {
     }
     if (!a) return;
     devices_.set_print(nullptr);
+    if (a->journal) a->journal->flush();  // the journal is whole before the job's end is saved
     const print::PrintStatus st = a->session ? a->session->poll() : print::PrintStatus{};
     const double elapsed = seconds(Clock::now() - a->started);
     json result = {{"elapsed_s", elapsed},

@@ -331,6 +331,7 @@ TEST_F(JobStoreTest, JournalAppendsAndReadsBack) {
     j.resumed(2);
     j.confirmed({.sequence = 2});
     j.confirmed({.sequence = 1});
+    j.flush();  // confirmed records are queued for the journal's writer
     EXPECT_EQ(read_journal(path).last_confirmed, 2);
     EXPECT_EQ(read_journal(path).records, 6u);
 }
