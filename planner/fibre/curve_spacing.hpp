@@ -3,6 +3,7 @@
 // curve vertex only looks at segments in the cells around it, never at all pairs.
 
 #include "planner/fibre/isocurves.hpp"
+#include "planner/toolpaths/toolpath.hpp"
 
 #include <vector>
 
@@ -14,8 +15,19 @@ namespace fibrecell::planner {
 double min_neighbour_distance(const std::vector<Polyline>& curves, double cap);
 
 // Minimal distance [mm] between points of different paths (vertex to segment), capped the same
-// way: the spacing a finished fibre layer actually has.
+// way.
 double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>>& paths,
                                   const std::vector<char>& closed, double cap);
+
+// The spacing a finished fibre layer actually has: the minimal distance [mm] between points of
+// different paths, and between points of one path more than `along_mm` apart along it (a
+// hairpin, a cusp, a join that comes back; around a closed path the shorter way), capped.
+double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& paths,
+                         const std::vector<char>& closed, double along_mm, double cap);
+
+// A fibre layer's spacing as the plan reports it (fibre.min_spacing_mm), for either strategy:
+// min_fibre_spacing over its paths with pieces of one path 4W apart along it, capped at 3W (no
+// two points nearer than that); 0 for a layer without paths.
+double fibre_spacing_mm(const std::vector<Toolpath>& paths, double w);
 
 }  // namespace fibrecell::planner

@@ -55,16 +55,6 @@ void connect_piece(const LayerPiece& piece, const std::vector<int>& sources,
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});
 }
 
-double min_spacing(const std::vector<Toolpath>& paths, double cap) {
-    if (paths.size() < 2) return 0;
-    std::vector<std::vector<Eigen::Vector2d>> points;
-    std::vector<char> closed;
-    for (const Toolpath& p : paths) {
-        points.push_back(p.points);
-        closed.push_back(p.closed);
-    }
-    return min_distance_between_paths(points, closed, cap);
-}
 
 }  // namespace
 
@@ -115,7 +105,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
                                "than the cutter distance)");
     clock.lap();
     out.paths = order_nearest(std::move(paths), Eigen::Vector2d::Zero());
-    out.min_spacing_mm = min_spacing(out.paths, 3 * options.spacing_mm);
+    out.min_spacing_mm = fibre_spacing_mm(out.paths, options.spacing_mm);
     out.timings.connection += clock.lap();
     return out;
 }

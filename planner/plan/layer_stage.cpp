@@ -1,5 +1,7 @@
 #include "planner/plan/layer_stage.hpp"
 
+#include "planner/fibre/curve_spacing.hpp"
+
 #include "planner/fibre/boundary_sources.hpp"
 #include "planner/fibre/fibre_layer.hpp"
 #include "planner/layers/layer_schedule.hpp"
@@ -95,6 +97,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
             w.layer.paths = std::move(r.paths);
             w.dropped_short = r.dropped_short;
+            w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
             FibreLayer r = plan_fibre_layer(
                 out.sections[i], v_placed, field.field.sigma_e, field.v_defined,

@@ -78,6 +78,24 @@ TEST(CurveSpacing, MeasuresOnlyNeighbouringLevels) {
     EXPECT_NEAR(min_neighbour_distance({a, tilted}, 5.0), 0.7, 1e-12);
 }
 
+// The spacing a fibre layer reports counts one path coming back near itself (a hairpin, a cusp)
+// once the two stretches are more than 4W apart along it, not the corner where it turns.
+TEST(CurveSpacing, FibreSpacingCountsAPathComingBackNearItself) {
+    using P = Eigen::Vector2d;
+    const std::vector<P> hairpin = {{0, 0}, {10, 0}, {10, 0.6}, {0, 0.6}};  // back at 0.6 mm
+    EXPECT_NEAR(min_fibre_spacing({hairpin}, {0}, 4.0, 3.0), 0.6, 1e-12);
+    // The same path with the stretches nearer along it than 4 mm: only the corner, not counted.
+    const std::vector<P> short_hairpin = {{0, 0}, {1.5, 0}, {1.5, 0.6}, {0, 0.6}};
+    EXPECT_NEAR(min_fibre_spacing({short_hairpin}, {0}, 4.0, 3.0), 3.0, 1e-12);
+    // A closed ring of radius 5 mm never comes near itself; around the loop the short way.
+    std::vector<P> ring;
+    for (int k = 0; k < 64; ++k) ring.emplace_back(5 * std::cos(k * M_PI / 32), 5 * std::sin(k * M_PI / 32));
+    EXPECT_NEAR(min_fibre_spacing({ring}, {1}, 4.0, 3.0), 3.0, 1e-12);
+    // Different paths count at any distance along them.
+    const std::vector<P> a = {{0, 0}, {10, 0}}, b = {{0, 0.8}, {10, 0.8}};
+    EXPECT_NEAR(min_fibre_spacing({a, b}, {0, 0}, 4.0, 3.0), 0.8, 1e-12);
+}
+
 TEST(AdaptiveIsocurves, UniformTensionGivesStraightFibresSpacedJustOverW) {
     const LayerMesh m = grid_layer(30, 10, 30, 20);
     const std::vector<Eigen::Vector2d> u(m.triangles.size(), Eigen::Vector2d(5.0, 0.0));
