@@ -312,6 +312,27 @@ void PrintRunner::reconnect_board(Active& a) {
     spdlog::info("print.board_reconnected job {}", a.id);
 }
 
+// The last fibre path was fed up to its cut when the print stopped: nothing is left to print,
+// but the fibre still runs from the nozzle into the part. Cut it; the robot does not move.
+void PrintRunner::cut_left_fibre(std::int64_t id) {
+    try {
+        devices_.connect(options_.connect_timeout);
+        auto& x = devices_.extruder();
+        std::vector<std::string> lines = x.select(drivers::Head::ccf);
+        for (auto& l : x.cut()) lines.push_back(std::move(l));
+        auto done = devices_.board().submit(lines);
+        if (done.wait_for(std::chrono::seconds(30)) != std::future_status::ready)
+            throw std::runtime_error("no answer from the extruder board within 30 s");
+        const auto outcome = done.get();
+        if (!outcome.ok()) throw std::runtime_error(outcome.detail);
+        spdlog::info("print.fibre_cut job {}: the fibre left in the part was cut", id);
+    } catch (const std::exception& e) {
+        spdlog::warn("print.fibre_cut job {}: the fibre left in the part could not be cut ({}); "
+                     "cut it by hand",
+                     id, e.what());
+    }
+}
+
 void PrintRunner::start_job(std::int64_t id) {
     auto refuse = [&](const std::string& why) {
         spdlog::error("print.start_refused job {}: {}", id, why);
@@ -341,6 +362,7 @@ void PrintRunner::start_job(std::int64_t id) {
     if (a->plan.resume && a->plan.resume->nothing_left) {
         // Every path was done before the interruption: nothing moves, the job is complete.
         spdlog::info("print.nothing_left job {}: every path was done before the interruption", id);
+        if (a->plan.resume->cut_first) cut_left_fibre(id);
         {
             std::lock_guard lock(mu_);
             active_ = std::move(a);

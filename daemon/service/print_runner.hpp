@@ -92,6 +92,7 @@ class PrintRunner {
     void handle(Command& c);
     void start_job(std::int64_t id);
     void reconnect_board(Active& a);
+    void cut_left_fibre(std::int64_t id);
     void hold_on_fault(Active& a, const std::string& reason);
     void save_fibre_fed(Active& a, const sync::MeteringStatus& m);
     void poll_active();

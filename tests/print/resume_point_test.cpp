@@ -157,6 +157,15 @@ TEST_F(ResumePointTest, FibreInThePartIsCutFirstAndTheRestLaidFromWhereTheFeedEn
     EXPECT_EQ(last.first_event, 16);
     // PLA units never cut.
     EXPECT_FALSE(resume_point(program_, 2).cut_first);
+    // The program's last path fed up to its cut: nothing left but that cut.
+    const drivers::abb::PrintProgram fibre_last = drivers::abb::build_print_program(
+        {pla_layer(0, 0.8, {120}), fibre_layer(1, 0.85, {145})}, drivers::abb::RobotCellConfig{});
+    std::int64_t start = 0;
+    for (const auto& e : fibre_last.events)
+        if (e.kind == EventKind::fibre_start) start = e.sequence;
+    const ResumePoint end = resume_point(fibre_last, start, FibreFed{start, 58.0});
+    EXPECT_TRUE(end.nothing_left);
+    EXPECT_TRUE(end.cut_first);
 }
 
 TEST_F(ResumePointTest, FibrePathCutIsDoneAndTheNextOneFollows) {
