@@ -30,7 +30,6 @@ inline daemon::CellConfig sim_cell_config(const std::filesystem::path& state_dir
     c.simulation.hotend_tau_s = 0.5;
     c.simulation.residency_s = 0.2;
     c.simulation.main_module = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
-    c.simulation.trajectory_samples = 1'000'000;  // tests measure along the whole path
     c.robot_io.poll_period = 2ms;
     c.robot_io.stable_reads = 1;
     c.robot_io.response_timeout = 1000ms;  // in-process on a loaded machine: no false link losses
@@ -46,7 +45,9 @@ class SimCellFixture : public ::testing::Test {
   protected:
     // A derived fixture may change scale_ in its constructor.
     void SetUp() override {
-        devices_ = std::make_unique<daemon::service::CellDevices>(sim_cell_config(dir_.path(), scale_));
+        daemon::CellConfig c = sim_cell_config(dir_.path(), scale_);
+        c.simulation.trajectory_samples = trajectory_samples_;
+        devices_ = std::make_unique<daemon::service::CellDevices>(c);
         ASSERT_NO_THROW(devices_->connect(std::chrono::seconds(20)));
         job_start_ = mock().executed_count();
     }
@@ -69,6 +70,7 @@ class SimCellFixture : public ::testing::Test {
     }
 
     double scale_ = 20;  // simulated seconds per real second
+    std::size_t trajectory_samples_ = 1'000'000;  // tests measure along the whole path
     TempDir dir_{"cell"};  // before the devices: the board's port link in it outlives them
     std::unique_ptr<daemon::service::CellDevices> devices_;
     std::size_t job_start_ = 0;
