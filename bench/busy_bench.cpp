@@ -9,6 +9,7 @@
 //   fibrecelld --config config/cell-demo.yaml --state-dir /tmp/bb --socket /tmp/bb/api.sock &
 //   build/release/bench/busy_bench /tmp/bb/api.sock examples/tensile-bar/tensile-bar.job.yaml
 //       examples/loop/loop.job.yaml 10 2   (one command line)
+#include "bench_files.hpp"
 #include "config/base64.hpp"
 #include "daemon/api/api_client.hpp"
 
@@ -35,13 +36,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw std::runtime_error(p.string() + ": cannot be read");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using bench::read_file;
 
 // The job's mesh file: `mesh: NAME` in its model section, beside the job file.
 std::string mesh_of(const std::string& job_yaml) {

@@ -6,6 +6,7 @@
 //
 //   fibrecelld --config config/cell-sim.yaml --state-dir /tmp/fb --socket /tmp/fb/api.sock &
 //   build/release/bench/service_bench /tmp/fb/api.sock examples/tensile-bar/tensile-bar.job.yaml
+#include "bench_files.hpp"
 #include "config/base64.hpp"
 #include "daemon/api/api_client.hpp"
 
@@ -27,12 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using bench::read_file;
 
 long rss_kib(long pid) {
     std::ifstream in("/proc/" + std::to_string(pid) + "/status");
