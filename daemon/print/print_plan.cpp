@@ -54,6 +54,16 @@ abb::PrintProgram program_tail(const abb::PrintProgram& program, std::size_t fir
 
 namespace {
 
+// A re-entry's first move: a straight travel (up and over, not a joint move's curve) to a stop
+// point, from wherever the robot was held.
+void make_reentry_rise(abb::ProgramMove& m) {
+    m.role = abb::MoveRole::travel;
+    m.joint = false;
+    m.fine = true;
+    m.zone_mm = 0;
+    m.length_mm = 0;
+}
+
 // Where `along_mm` of a fibre path's feed ends: the print move it falls on (from its fibre_start's
 // move on) and the point on it.
 struct PathPoint {
@@ -91,11 +101,7 @@ abb::PrintProgram reentry_mid_path(const abb::PrintProgram& program, const Resum
     const abb::ProgramMove& planned_travel = program.moves[resume.first_move - 1];
     const abb::ProgramMove& planned_approach = program.moves[resume.first_move];
     abb::ProgramMove rise = planned_travel;
-    rise.role = abb::MoveRole::travel;
-    rise.joint = false;
-    rise.fine = true;
-    rise.zone_mm = 0;
-    rise.length_mm = 0;  // from wherever the robot was held
+    make_reentry_rise(rise);
     rise.position_mm = {q.at.x(), q.at.y(), planned_travel.position_mm.z()};
     rise.orientation = planned_approach.orientation;
     abb::ProgramMove approach = planned_approach;
@@ -131,12 +137,7 @@ abb::PrintProgram reentry_program(const abb::PrintProgram& program, const Resume
     if (resume.fibre_fed_mm > 0) return reentry_mid_path(program, resume, end_move);
     abb::PrintProgram run =
         program_tail(program, resume.first_move - 1, end_move, resume.first_event);
-    abb::ProgramMove& rise = run.moves.front();
-    rise.role = abb::MoveRole::travel;
-    rise.joint = false;  // straight up and over, not a joint move's curve
-    rise.fine = true;
-    rise.zone_mm = 0;
-    rise.length_mm = 0;  // from wherever the robot was held
+    make_reentry_rise(run.moves.front());
     return run;
 }
 
