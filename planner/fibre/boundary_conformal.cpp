@@ -1,8 +1,6 @@
 #include "planner/fibre/boundary_conformal.hpp"
 
-#include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/segment_grid.hpp"
-#include "planner/layers/triangle_locator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,77 +9,26 @@
 namespace fibrecell::planner {
 namespace {
 
-constexpr double kFar = 1e12;  // stands for "no boundary in reach" in isocurve extraction
-
-// The rings d = 1.5W and the link curves d = level, with level >= 2.5W raised until the two are
-// at least W apart: the heat distance is metric to about 1%, the spacing rule is exact.
-std::pair<std::vector<Polyline>, std::vector<Polyline>> ring_and_link_curves(
-    const LayerMesh& layer, const std::vector<double>& d, double w, double& level) {
-    level = 2.5 * w;
-    for (int attempt = 0;; ++attempt) {
-        std::vector<Polyline> curves = extract_isocurves(layer, d, {1.5 * w, level});
-        const double gap = min_neighbour_distance(curves, 2 * w);
-        if (gap >= w || attempt == 4) {
-            std::vector<Polyline> rings, links;
-            for (auto& c : curves) (c.level == 0 ? rings : links).push_back(std::move(c));
-            return {std::move(rings), std::move(links)};
-        }
-        level += (w - gap) + 0.01 * w;
-    }
-}
-
 struct CutEnd {
     PieceEnd end;
     int curve = -1;  // the link curve it lies on
     double arc = 0;  // arc length along that curve [mm]
 };
 
-// Step 2: the parts of `curve` where d >= level, each an open piece; `cut` collects the ends
-// made by the cut (on the link curve).
-void truncate(const Polyline& curve, const TriangleLocator& locate, const std::vector<double>& d,
-              double level, std::vector<Polyline>& pieces, std::vector<PieceEnd>& cut) {
-    std::vector<Eigen::Vector2d> pts = curve.points;
-    std::vector<double> dist;
-    for (const auto& p : pts) dist.push_back(locate.interpolate(d, p, kFar));
-    const auto below = std::find_if(dist.begin(), dist.end(), [&](double x) { return x < level; });
-    if (below == dist.end()) {
-        pieces.push_back(curve);
-        return;
-    }
-    if (curve.closed) {  // start at a removed point, so every kept run is one open piece
-        const auto shift = below - dist.begin();
-        std::rotate(pts.begin(), pts.begin() + shift, pts.end());
-        std::rotate(dist.begin(), dist.begin() + shift, dist.end());
-        pts.push_back(pts.front());
-        dist.push_back(dist.front());
-    }
-    Polyline run{.points = {}, .closed = false, .level = curve.level};
-    bool run_starts_cut = false;
-    auto finish_run = [&](bool ends_cut) {
-        if (run.points.size() >= 2) {
+// Step 2 on the true outline: the runs of every stress curve inside the stress region, each an
+// open piece (a closed curve wholly inside stays closed); `cut` collects the ends of open pieces.
+void clip_to_region(const std::vector<Polyline>& stress, const std::vector<Polygon>& region,
+                    std::vector<Polyline>& pieces, std::vector<PieceEnd>& cut) {
+    for (const Polyline& curve : stress) {
+        ClippedRuns clipped = clip_polyline(region, curve.points, curve.closed);
+        for (auto& run : clipped.runs) {
             const int id = static_cast<int>(pieces.size());
-            if (run_starts_cut) cut.push_back({id, false});
-            if (ends_cut) cut.push_back({id, true});
-            pieces.push_back(run);
-        }
-        run.points.clear();
-    };
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        const bool keep = dist[i] >= level;
-        if (i > 0 && (dist[i - 1] >= level) != keep) {
-            // d is linear along a segment (both lie in one triangle): the crossing is exact.
-            const double t = (level - dist[i - 1]) / (dist[i] - dist[i - 1]);
-            const Eigen::Vector2d x = pts[i - 1] + t * (pts[i] - pts[i - 1]);
-            if (keep) run_starts_cut = true;
-            if (run.points.empty() || run.points.back() != x) run.points.push_back(x);
-            if (!keep) finish_run(true);
-        }
-        if (keep) {
-            if (run.points.empty()) run_starts_cut = false;
-            if (run.points.empty() || run.points.back() != pts[i]) run.points.push_back(pts[i]);
+            pieces.push_back({std::move(run), clipped.closed_inside, curve.level});
+            if (clipped.closed_inside) continue;
+            cut.push_back({id, false});
+            cut.push_back({id, true});
         }
     }
-    finish_run(false);
 }
 
 // Where each cut end lies along the link curves (the nearest point of their segments).
@@ -189,7 +136,9 @@ std::vector<Link> link_cut_ends(const std::vector<Polyline>& pieces,
                     point_segment_distance(p, s.a, s.b) < w)
                     clear = false;
             });
-        if (!clear || !chains.try_join(from.end, to.end)) continue;
+        if (!clear || !join_keeps_spacing(pieces, links, link, w) ||
+            !chains.try_join(from.end, to.end))
+            continue;
         used[c.i] = used[c.j] = 1;
         links.push_back(std::move(link));
     }
@@ -198,27 +147,19 @@ std::vector<Link> link_cut_ends(const std::vector<Polyline>& pieces,
 
 }  // namespace
 
-BoundaryConformal conform_to_boundary(const LayerMesh& layer, const std::vector<double>& d,
+BoundaryConformal conform_to_boundary(const FibreRegion& region,
                                       const std::vector<Polyline>& stress,
                                       const BoundaryConformalOptions& options) {
     const double w = options.spacing_mm;
-    std::vector<double> finite_d = d;
-    for (double& x : finite_d)
-        if (!std::isfinite(x)) x = kFar;
-
     BoundaryConformal out;
-    auto [rings, link_curves] = ring_and_link_curves(layer, finite_d, w, out.link_level_mm);
-    out.boundary = std::move(rings);
-
-    const TriangleLocator locate(layer, 2 * w);
+    out.boundary = region.rings;
     std::vector<PieceEnd> cut;
-    for (const Polyline& c : stress)
-        truncate(c, locate, finite_d, out.link_level_mm, out.pieces, cut);
-
+    clip_to_region(stress, region.stress, out.pieces, cut);
+    if (region.link_curves.empty()) return out;
     const double max_link = options.max_link_mm > 0 ? options.max_link_mm : 6 * w;
-    out.links =
-        link_cut_ends(out.pieces, out.boundary, place_on_links(out.pieces, cut, link_curves, w),
-                      link_curves, w, max_link);
+    out.links = link_cut_ends(out.pieces, out.boundary,
+                              place_on_links(out.pieces, cut, region.link_curves, w),
+                              region.link_curves, w, max_link);
     return out;
 }
 

@@ -32,7 +32,8 @@ SelectedFaces selected_faces(const TetMesh& placed, const std::vector<BoundaryTr
     return out;
 }
 
-std::vector<int> boundary_sources(const LayerMesh& layer, const SelectedFaces& faces) {
+std::vector<std::array<int, 2>> selected_outline_edges(const LayerMesh& layer,
+                                                       const SelectedFaces& faces) {
     if (faces.empty()) return {};
     // Outline edges are used by one triangle; remember which.
     std::map<std::pair<int, int>, int> edge_triangle;  // edge -> triangle, or -1 when shared
@@ -46,7 +47,7 @@ std::vector<int> boundary_sources(const LayerMesh& layer, const SelectedFaces& f
     auto lift = [&](int v) {
         return Eigen::Vector3d(layer.vertices[v].x(), layer.vertices[v].y(), layer.z);
     };
-    std::vector<int> sources;
+    std::vector<std::array<int, 2>> edges;
     for (const auto& [edge, f] : edge_triangle) {
         if (f < 0) continue;
         const auto it = faces.by_tet.find(layer.triangle_tet[f]);
@@ -54,14 +55,11 @@ std::vector<int> boundary_sources(const LayerMesh& layer, const SelectedFaces& f
         const Eigen::Vector3d a = lift(edge.first), b = lift(edge.second);
         for (const auto& face : it->second)
             if (on_face(a, face, tol) && on_face(b, face, tol)) {
-                sources.push_back(edge.first);
-                sources.push_back(edge.second);
+                edges.push_back({edge.first, edge.second});
                 break;
             }
     }
-    std::sort(sources.begin(), sources.end());
-    sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
-    return sources;
+    return edges;  // in the map's order: ascending
 }
 
 }  // namespace fibrecell::planner

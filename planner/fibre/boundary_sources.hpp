@@ -1,6 +1,6 @@
 #pragma once
 // Where a layer meets the boundary the user chose for boundary-conformal fibres (paper Section
-// 4.4, Step 1): the outline vertices of the layer that lie on a selected face of the part.
+// 4.4, Step 1): the outline edges of the layer that lie on a selected face of the part.
 
 #include "planner/layers/layer_mesh.hpp"
 #include "planner/mesh/boundary.hpp"
@@ -24,8 +24,10 @@ struct SelectedFaces {
 // placed: the part on the bed; faces: boundary triangles of it (vertex indices of `placed`).
 SelectedFaces selected_faces(const TetMesh& placed, const std::vector<BoundaryTriangle>& faces);
 
-// The vertices of `layer` (sliced from `placed`) on its outline whose outline edge was cut from
-// a selected face: the heat sources of the layer's boundary distance. Ascending, no repeats.
-std::vector<int> boundary_sources(const LayerMesh& layer, const SelectedFaces& faces);
+// The outline edges of `layer` (sliced from `placed`) cut from a selected face, as pairs of
+// vertex indices of `layer` (smaller first), ascending: where the rings of boundary-conformal
+// fibre follow the outline.
+std::vector<std::array<int, 2>> selected_outline_edges(const LayerMesh& layer,
+                                                       const SelectedFaces& faces);
 
 }  // namespace fibrecell::planner

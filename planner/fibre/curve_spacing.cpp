@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fibrecell::planner {
 
@@ -35,8 +36,37 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
     return best;
 }
 
-double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& paths,
+namespace {
+
+// The path with points added so that no segment is longer than `step` (the closing segment of a
+// closed path too): within one path the nearest pair more than along_mm apart need not involve a
+// vertex, so the vertices must be dense enough to find it.
+std::vector<Eigen::Vector2d> densified(const std::vector<Eigen::Vector2d>& pts, bool closed,
+                                       double step) {
+    std::vector<Eigen::Vector2d> out;
+    const std::size_t n = pts.size();
+    const std::size_t count = closed && n > 2 ? n : (n == 0 ? 0 : n - 1);
+    for (std::size_t k = 0; k < count; ++k) {
+        const Eigen::Vector2d& a = pts[k];
+        const Eigen::Vector2d& b = pts[(k + 1) % n];
+        const int parts = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+        for (int j = 0; j < parts; ++j)
+            out.push_back(a + (b - a) * (static_cast<double>(j) / parts));
+    }
+    if (!closed && n > 0) out.push_back(pts.back());
+    if (closed && n <= 2) out = pts;
+    return out;
+}
+
+}  // namespace
+
+double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
                          const std::vector<char>& closed, double along_mm, double cap) {
+    // Points every along/32 (W/8 at 4W) find a close pair within one path to W/16.
+    std::vector<std::vector<Eigen::Vector2d>> paths;
+    paths.reserve(given.size());
+    for (std::size_t i = 0; i < given.size(); ++i)
+        paths.push_back(densified(given[i], closed[i], along_mm / 32));
     // Segments tagged by their index in `segs`, which knows the path and where along it they lie.
     struct Piece {
         int path;
@@ -64,16 +94,27 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& paths,
         }
         length[i] = loop ? s + (pts.front() - pts.back()).norm() : s;
     }
-    // How far along its path the nearest point of a piece is from position `s`.
-    const auto apart = [&](const Piece& piece, double s) {
-        double d = s < piece.from_mm ? piece.from_mm - s : s > piece.to_mm ? s - piece.to_mm : 0.0;
+    // Distance from p (at `s` along path i) to the part of a segment of the same path that lies
+    // more than along_mm from s along the path (around a closed path, the shorter way).
+    const auto far_part = [&](const Eigen::Vector2d& p, double s, const Piece& piece,
+                              const TaggedSegment& seg) {
         const std::size_t i = static_cast<std::size_t>(piece.path);
-        if (closed[i]) {
-            const double around = std::min(std::abs(length[i] - s + piece.from_mm),
-                                           std::abs(length[i] - piece.to_mm + s));
-            d = std::min(d, around);
+        const double big = std::numeric_limits<double>::infinity();
+        const double l = length[i];
+        const std::pair<double, double> wanted[2] = {
+            closed[i] ? std::pair{s + along_mm, s + l - along_mm} : std::pair{s + along_mm, big},
+            closed[i] ? std::pair{s - l + along_mm, s - along_mm} : std::pair{-big, s - along_mm}};
+        const double span = piece.to_mm - piece.from_mm;
+        double best = big;
+        for (const auto& [lo, hi] : wanted) {
+            const double a = std::max(lo, piece.from_mm), b = std::min(hi, piece.to_mm);
+            if (!(a < b) || span <= 0) continue;
+            const Eigen::Vector2d d = seg.b - seg.a;
+            best =
+                std::min(best, point_segment_distance(p, seg.a + d * ((a - piece.from_mm) / span),
+                                                      seg.a + d * ((b - piece.from_mm) / span)));
         }
-        return d;
+        return best;
     };
     double best = cap;
     for (std::size_t i = 0; i < paths.size(); ++i)
@@ -81,8 +122,9 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& paths,
             const Eigen::Vector2d& p = paths[i][k];
             grid.around(p, [&](const TaggedSegment& seg) {
                 const Piece& piece = segs[static_cast<std::size_t>(seg.tag)];
-                if (piece.path == static_cast<int>(i) && !(apart(piece, at[i][k]) > along_mm)) return;
-                best = std::min(best, point_segment_distance(p, seg.a, seg.b));
+                best = std::min(best, piece.path == static_cast<int>(i)
+                                          ? far_part(p, at[i][k], piece, seg)
+                                          : point_segment_distance(p, seg.a, seg.b));
             });
         }
     return best;

@@ -1,6 +1,7 @@
 #include "planner/fibre/end_joins.hpp"
 
 #include "planner/fibre/segment_grid.hpp"
+#include "planner/toolpaths/polygon_offset.hpp"
 
 #include <algorithm>
 
@@ -9,6 +10,16 @@ namespace {
 
 bool same(const PieceEnd& a, const PieceEnd& b) {
     return a.piece == b.piece && a.last == b.last;
+}
+
+// The whole straight link a-b lies in the region: clipped to it, nothing of it is lost (a chord
+// across a bend of the region's edge would be, though its sample points are inside).
+bool segment_inside(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
+                    const Eigen::Vector2d& b) {
+    double kept = 0;
+    for (const auto& run : clip_polyline(region, {a, b}, false).runs)
+        for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
+    return kept >= (b - a).norm() - 1e-4;
 }
 
 }  // namespace
@@ -58,6 +69,7 @@ std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
     ChainSets chains(pieces.size());
     for (const Link& l : taken) chains.try_join(l.from, l.to);
     std::vector<char> used(free_ends.size(), 0);
+    std::vector<Link> made = taken;  // for the spacing along the fibre through earlier joins
     std::vector<Link> links;
     for (const Pair& p : pairs) {
         if (used[p.a] || used[p.b]) continue;
@@ -65,7 +77,7 @@ std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
         const PieceEnd& eb = free_ends[p.b];
         const Eigen::Vector2d a = end_point(pieces, ea), b = end_point(pieces, eb);
         // The straight link's inner points must keep clear of every other curve.
-        bool clear = true;
+        bool clear = !options.keep_inside || segment_inside(*options.keep_inside, a, b);
         for (double t : {0.25, 0.5, 0.75}) {
             const Eigen::Vector2d x = a + t * (b - a);
             grid.around(x, [&](const TaggedSegment& s) {
@@ -74,9 +86,13 @@ std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
                     clear = false;
             });
         }
-        if (!clear || !chains.try_join(ea, eb)) continue;
+        const Link link{ea, eb, {}};
+        if (!clear || !join_keeps_spacing(pieces, made, link, options.clearance_mm) ||
+            !chains.try_join(ea, eb))
+            continue;
         used[p.a] = used[p.b] = 1;
-        links.push_back({ea, eb, {}});
+        links.push_back(link);
+        made.push_back(link);
     }
     return links;
 }

@@ -4,6 +4,7 @@
 
 #include "planner/fibre/isocurves.hpp"
 #include "planner/fibre/path_chains.hpp"
+#include "planner/layers/layer_mesh.hpp"
 
 #include <vector>
 
@@ -12,6 +13,9 @@ namespace fibrecell::planner {
 struct EndJoinOptions {
     double max_gap_mm = 2.0;    // join ends nearer than this (the paper: 2W)
     double clearance_mm = 1.0;  // a link keeps this far from every third curve (W)
+    // Where a link may run (loops, even-odd; null: anywhere): a link across a hole or a notch
+    // of the part is not made.
+    const std::vector<Polygon>* keep_inside = nullptr;
 };
 
 // pieces: open (or closed, ignored) curves; taken: links already made (their ends are not free);

@@ -4,9 +4,9 @@
 #include "planner/fibre/boundary_conformal.hpp"
 #include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/end_joins.hpp"
-#include "planner/fibre/heat_distance.hpp"
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/scalar_field.hpp"
+#include "planner/layers/outline.hpp"
 #include "planner/stopwatch.hpp"
 #include "planner/toolpaths/path_order.hpp"
 
@@ -18,50 +18,47 @@ namespace fibrecell::planner {
 
 namespace {
 
-// The boundary sources that fall on one piece, in the piece's own vertex numbers.
-std::vector<int> piece_sources(const LayerPiece& piece, const std::vector<int>& layer_sources,
-                               std::size_t layer_vertices) {
-    if (layer_sources.empty()) return {};
+// The selected outline edges that fall on one piece, as segments of its outline.
+std::vector<Segment2> piece_selected(const LayerPiece& piece,
+                                     const std::vector<std::array<int, 2>>& layer_edges,
+                                     std::size_t layer_vertices) {
+    if (layer_edges.empty()) return {};
     std::vector<int> local(layer_vertices, -1);
     for (int v = 0; v < static_cast<int>(piece.vertex_of_layer.size()); ++v)
         local[piece.vertex_of_layer[v]] = v;
-    std::vector<int> out;
-    for (int s : layer_sources)
-        if (local[s] >= 0) out.push_back(local[s]);
+    std::vector<Segment2> out;
+    for (const auto& [a, b] : layer_edges)
+        if (local[a] >= 0 && local[b] >= 0)
+            out.push_back({piece.mesh.vertices[local[a]], piece.mesh.vertices[local[b]]});
     return out;
 }
 
-// Section 4.4 on one piece: boundary rings and truncation where the piece has chosen boundary,
-// then the joins of close ends. Adds the paths to `paths`, the joins to `joins`.
-void connect_piece(const LayerPiece& piece, const std::vector<int>& sources,
-                   std::vector<Polyline> curves, double w, std::vector<Toolpath>& paths,
-                   std::size_t& joins) {
-    std::vector<Polyline> rings;
-    std::vector<Link> links;
-    if (!sources.empty()) {
-        BoundaryConformal b = conform_to_boundary(piece.mesh, heat_distance(piece.mesh, sources),
-                                                  curves, {.spacing_mm = w});
-        rings = std::move(b.boundary);
-        curves = std::move(b.pieces);
-        links = std::move(b.links);
-    }
+// Section 4.4 on one piece: the stress curves clipped to where fibre may lie, boundary rings and
+// their links where the piece has chosen boundary, then the joins of close ends. Adds the paths
+// to `paths`, the joins to `joins`.
+void connect_piece(const FibreRegion& region, std::vector<Polyline> curves, double w,
+                   std::vector<Toolpath>& paths, std::size_t& joins) {
+    BoundaryConformal b = conform_to_boundary(region, curves, {.spacing_mm = w});
+    // Links may run along the region's edge, where the curve ends lie: grown by a hair, the
+    // region keeps them in.
+    const std::vector<Polygon> link_region = offset_region(region.stress, 1e-4);
     std::vector<Link> close =
-        join_close_ends(curves, links, rings, {.max_gap_mm = 2 * w, .clearance_mm = w});
-    links.insert(links.end(), close.begin(), close.end());
-    joins += links.size();
-    for (Polyline& c : join_pieces(curves, links))
+        join_close_ends(b.pieces, b.links, b.boundary,
+                        {.max_gap_mm = 2 * w, .clearance_mm = w, .keep_inside = &link_region});
+    b.links.insert(b.links.end(), close.begin(), close.end());
+    joins += b.links.size();
+    for (Polyline& c : join_pieces(b.pieces, b.links))
         paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
-    for (Polyline& r : rings)
+    for (Polyline& r : b.boundary)
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});
 }
-
 
 }  // namespace
 
 FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
                             const std::vector<double>& sigma_e,
                             const std::vector<std::uint8_t>& v_defined,
-                            const std::vector<int>& boundary_sources,
+                            const std::vector<std::array<int, 2>>& selected_edges,
                             const FibreLayerOptions& options) {
     FibreLayer out;
     Stopwatch clock;
@@ -89,8 +86,10 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
             layer.z, piece.mesh.triangles.size(), curves.geodesic_span_mm, curves.count,
             curves.extractions, curves.counts_ruled_out, curves.min_distance_mm);
         if (curves.count == 0) continue;
-        connect_piece(piece, piece_sources(piece, boundary_sources, layer.vertices.size()),
-                      std::move(curves.curves), options.spacing_mm, paths, out.joins);
+        const FibreRegion region = fibre_region(
+            layer_outline(piece.mesh), piece_selected(piece, selected_edges, layer.vertices.size()),
+            {.spacing_mm = options.spacing_mm});
+        connect_piece(region, std::move(curves.curves), options.spacing_mm, paths, out.joins);
         out.timings.connection += clock.lap();
     }
     // The cutter sits this far behind the nozzle: a shorter path cannot be laid and cut.

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,8 +17,8 @@
 namespace fibrecell::planner {
 
 struct FibreLayerOptions {
-    LayerFieldOptions field;         // smoothing iterations, p
-    double spacing_mm = 1.0;         // W
+    LayerFieldOptions field;                               // smoothing iterations, p
+    double spacing_mm = 1.0;                               // W
     double cutter_distance_mm = paper_cutter_distance_mm;  // shorter fibre paths cannot be laid
     // A piece none of whose tets carries more tension than this gets no fibres: isovalues are
     // relative to the piece's own range, so without this a piece with only the rule-3 marker
@@ -43,12 +44,13 @@ struct FibreLayer {
     FibreLayerTimings timings;
 };
 
-// v_e, sigma_e, v_defined: per tet, v_e in the frame of `layer` (placed). boundary_sources:
-// vertices of `layer` on the boundary chosen for boundary-conformal fibres (may be empty).
+// v_e, sigma_e, v_defined: per tet, v_e in the frame of `layer` (placed). selected_edges: the
+// outline edges of `layer` (vertex pairs) on the boundary chosen for boundary-conformal fibres
+// (may be empty). Every fibre keeps W/2 inside the layer's outline.
 FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vector3d>& v_e,
                             const std::vector<double>& sigma_e,
                             const std::vector<std::uint8_t>& v_defined,
-                            const std::vector<int>& boundary_sources,
+                            const std::vector<std::array<int, 2>>& selected_edges,
                             const FibreLayerOptions& options = {});
 
 }  // namespace fibrecell::planner

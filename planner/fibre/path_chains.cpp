@@ -1,5 +1,8 @@
 #include "planner/fibre/path_chains.hpp"
 
+#include "planner/fibre/curve_spacing.hpp"
+
+#include <algorithm>
 #include <stdexcept>
 
 namespace fibrecell::planner {
@@ -14,7 +17,64 @@ struct EndLinks {
     int& operator()(const PieceEnd& e) { return at[e.last][e.piece]; }
 };
 
+bool same_end(const PieceEnd& a, const PieceEnd& b) {
+    return a.piece == b.piece && a.last == b.last;
+}
+
+// The fibre as it leaves the piece end `e` inwards, through the links already made, until it
+// has run `reach` mm or ends: its points in order from e.
+std::vector<Eigen::Vector2d> fibre_from(const std::vector<Polyline>& pieces,
+                                        const std::vector<Link>& links, PieceEnd e, double reach) {
+    std::vector<Eigen::Vector2d> out;
+    double along = 0;
+    auto add = [&](const Eigen::Vector2d& p) {
+        if (!out.empty()) along += (p - out.back()).norm();
+        out.push_back(p);
+    };
+    const int start = e.piece;
+    for (std::size_t hops = 0; hops <= links.size(); ++hops) {
+        const auto& pts = pieces[e.piece].points;
+        for (std::size_t k = 0; k < pts.size() && along <= reach; ++k)
+            add(pts[e.last ? pts.size() - 1 - k : k]);
+        if (along > reach) break;
+        const PieceEnd other{e.piece, !e.last};
+        const auto l = std::find_if(links.begin(), links.end(), [&](const Link& x) {
+            return same_end(x.from, other) || same_end(x.to, other);
+        });
+        if (l == links.end()) break;
+        const bool forward = same_end(l->from, other);
+        if (forward)
+            for (const auto& p : l->between) add(p);
+        else
+            for (auto it = l->between.rbegin(); it != l->between.rend(); ++it) add(*it);
+        e = forward ? l->to : l->from;
+        if (e.piece == start) break;
+    }
+    return out;
+}
+
 }  // namespace
+
+bool join_keeps_spacing(const std::vector<Polyline>& pieces, const std::vector<Link>& made,
+                        const Link& link, double w, double reach_mm) {
+    const double reach = reach_mm > 0 ? reach_mm : 8 * w;
+    if (link.from.piece == link.to.piece) {  // the piece closes on itself: check the whole loop
+        std::vector<Eigen::Vector2d> loop = pieces[link.from.piece].points;
+        // `between` runs from the `from` end: after the last point when that is where it leaves.
+        if (link.from.last)
+            loop.insert(loop.end(), link.between.begin(), link.between.end());
+        else
+            loop.insert(loop.end(), link.between.rbegin(), link.between.rend());
+        return min_fibre_spacing({loop}, {1}, 4 * w, w) >= w * (1 - 1e-9);
+    }
+    // The fibre as it runs through the join: into `from`'s end, along the link, out of `to`.
+    std::vector<Eigen::Vector2d> fibre = fibre_from(pieces, made, link.from, reach);
+    std::reverse(fibre.begin(), fibre.end());
+    fibre.insert(fibre.end(), link.between.begin(), link.between.end());
+    const std::vector<Eigen::Vector2d> out = fibre_from(pieces, made, link.to, reach);
+    fibre.insert(fibre.end(), out.begin(), out.end());
+    return min_fibre_spacing({fibre}, {0}, 4 * w, w) >= w * (1 - 1e-9);
+}
 
 ChainSets::ChainSets(std::size_t pieces) : parent_(pieces) {
     for (std::size_t i = 0; i < pieces; ++i) parent_[i] = static_cast<int>(i);

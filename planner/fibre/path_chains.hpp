@@ -39,6 +39,13 @@ class ChainSets {
 // The end point of a piece [mm].
 const Eigen::Vector2d& end_point(const std::vector<Polyline>& pieces, const PieceEnd& end);
 
+// Whether the fibre joined along `link` keeps W from itself near the join: no two points closer
+// than w that lie more than 4w apart along the joined fibre, over the link and `reach_mm` (8W
+// when 0) of fibre on either side, followed through the links already `made`. A link that folds
+// back on a piece (a V-shaped cusp, a hairpin tighter than W) fails.
+bool join_keeps_spacing(const std::vector<Polyline>& pieces, const std::vector<Link>& made,
+                        const Link& link, double w, double reach_mm = 0);
+
 // Joins `pieces` along `links` (each piece end used by at most one link; closed pieces are
 // passed through untouched and must not be linked). Every chain becomes one polyline, closed when
 // its links form a cycle. Throws std::invalid_argument when an end is linked twice.

@@ -19,7 +19,7 @@ namespace fibrecell::planner {
 std::vector<double> scalar_field(const LayerMesh& layer, const std::vector<Eigen::Vector2d>& u_f);
 
 // The piecewise-linear s (#V) minimising sum_f area_f |grad s_f - target_f|^2, with the first
-// vertex of each connected piece pinned to 0. scalar_field() and the heat method both use it.
+// vertex of each connected piece pinned to 0. scalar_field() uses it.
 std::vector<double> fit_gradient(const LayerMesh& layer,
                                  const std::vector<Eigen::Vector2d>& target);
 

@@ -1,6 +1,6 @@
 #pragma once
 // Piecewise-linear calculus on a layer mesh: the constant gradients of the three hat functions of
-// a triangle, shared by the least-squares fits and the heat method.
+// a triangle, used by the least-squares fit of the scalar field.
 
 #include "planner/layers/layer_mesh.hpp"
 

@@ -101,7 +101,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         } else {
             FibreLayer r = plan_fibre_layer(
                 out.sections[i], v_placed, field.field.sigma_e, field.v_defined,
-                boundary_sources(out.sections[i], boundary_fibre_faces), fibre);
+                selected_outline_edges(out.sections[i], boundary_fibre_faces), fibre);
             w.layer.paths = std::move(r.paths);
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.min_spacing = r.min_spacing_mm;
@@ -111,8 +111,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.timings = r.timings;
         }
         if (s.head == Head::ccf)
-            w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed,
-                                      field.field.sigma_e, field.v_defined, {.p = job.planner.p});
+            w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
+                                      field.v_defined, {.p = job.planner.p});
         std::lock_guard lock(progress_mutex);
         control.report("layers", static_cast<double>(++finished) / schedule.size());
     };

@@ -2,7 +2,9 @@
 
 #include <polyclipping/clipper.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +33,12 @@ ClipperLib::Paths to_clipper(const std::vector<Polygon>& loops) {
         paths.push_back(std::move(path));
     }
     return paths;
+}
+
+ClipperLib::IntPoint to_units(const Eigen::Vector2d& p) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+        throw std::invalid_argument("a point has a non-finite coordinate");
+    return {std::llround(p.x() * units_per_mm), std::llround(p.y() * units_per_mm)};
 }
 
 Polygon from_clipper(const ClipperLib::Path& path) {
@@ -62,6 +70,65 @@ void collect_islands(const ClipperLib::PolyNode& node, std::vector<std::vector<P
     }
 }
 
+std::vector<Polygon> from_clipper(const ClipperLib::Paths& paths) {
+    std::vector<Polygon> out;
+    out.reserve(paths.size());
+    for (const ClipperLib::Path& path : paths) out.push_back(from_clipper(path));
+    return out;
+}
+
+// Arc-length position [mm] along `line` of the point nearest p.
+double arc_position(const std::vector<Eigen::Vector2d>& line, const Eigen::Vector2d& p) {
+    double best = std::numeric_limits<double>::infinity(), at = 0, arc = 0;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        const Eigen::Vector2d ab = line[i + 1] - line[i];
+        const double len2 = ab.squaredNorm();
+        const double t = len2 > 0 ? std::clamp((p - line[i]).dot(ab) / len2, 0.0, 1.0) : 0.0;
+        const double d = (line[i] + t * ab - p).squaredNorm();
+        const double len = std::sqrt(len2);
+        if (d < best) {
+            best = d;
+            at = arc + t * len;
+        }
+        arc += len;
+    }
+    return at;
+}
+
+// The runs of an open polyline inside the region, ordered and directed along it.
+std::vector<std::vector<Eigen::Vector2d>> clip_open(const ClipperLib::Paths& region,
+                                                    const std::vector<Eigen::Vector2d>& line) {
+    ClipperLib::Path subject;
+    subject.reserve(line.size());
+    for (const Eigen::Vector2d& p : line) subject.push_back(to_units(p));
+    ClipperLib::Clipper clipper;
+    clipper.AddPath(subject, ClipperLib::ptSubject, false);
+    clipper.AddPaths(region, ClipperLib::ptClip, true);
+    ClipperLib::PolyTree tree;
+    clipper.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftEvenOdd,
+                    ClipperLib::pftEvenOdd);
+    ClipperLib::Paths open;
+    ClipperLib::OpenPathsFromPolyTree(tree, open);
+    // Clipper does not promise the input's order or direction: restore both from where each
+    // run lies along the line.
+    std::vector<std::pair<double, std::vector<Eigen::Vector2d>>> runs;
+    for (const ClipperLib::Path& path : open) {
+        if (path.size() < 2) continue;
+        Polygon run = from_clipper(path);
+        double first = arc_position(line, run.front()), last = arc_position(line, run.back());
+        if (last < first) {
+            std::reverse(run.begin(), run.end());
+            std::swap(first, last);
+        }
+        runs.emplace_back(first, std::move(run));
+    }
+    std::sort(runs.begin(), runs.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<std::vector<Eigen::Vector2d>> out;
+    for (auto& r : runs) out.push_back(std::move(r.second));
+    return out;
+}
+
 }  // namespace
 
 std::vector<Polygon> offset_region(const std::vector<Polygon>& loops, double delta_mm,
@@ -87,6 +154,90 @@ std::vector<std::vector<Polygon>> split_islands(const std::vector<Polygon>& loop
     std::vector<std::vector<Polygon>> islands;
     collect_islands(tree, islands);
     return islands;
+}
+
+std::vector<Polygon> segment_band(const std::vector<Segment2>& segments, double radius_mm,
+                                  const OffsetOptions& options) {
+    if (!(radius_mm > 0) || !std::isfinite(radius_mm))
+        throw std::invalid_argument("band radius_mm must be positive");
+    if (!(options.arc_tolerance_mm > 0))
+        throw std::invalid_argument("offset arc_tolerance_mm must be positive");
+    ClipperLib::ClipperOffset offset(2.0, options.arc_tolerance_mm * units_per_mm);
+    for (const Segment2& s : segments)
+        offset.AddPath({to_units(s[0]), to_units(s[1])}, ClipperLib::jtRound,
+                       ClipperLib::etOpenRound);
+    ClipperLib::Paths result;
+    offset.Execute(result, radius_mm * units_per_mm);
+    return from_clipper(result);
+}
+
+std::vector<Polygon> region_difference(const std::vector<Polygon>& a,
+                                       const std::vector<Polygon>& b) {
+    ClipperLib::Clipper clipper;
+    clipper.AddPaths(to_clipper(a), ClipperLib::ptSubject, true);
+    if (!b.empty()) clipper.AddPaths(to_clipper(b), ClipperLib::ptClip, true);
+    ClipperLib::Paths result;
+    clipper.Execute(ClipperLib::ctDifference, result, ClipperLib::pftEvenOdd,
+                    ClipperLib::pftNonZero);
+    return from_clipper(result);
+}
+
+bool inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& p) {
+    const ClipperLib::IntPoint at = to_units(p);
+    bool inside = false;
+    for (const Polygon& loop : region) {
+        ClipperLib::Path path;
+        path.reserve(loop.size());
+        for (const Eigen::Vector2d& q : loop) path.push_back(to_units(q));
+        if (ClipperLib::PointInPolygon(at, path) == 1) inside = !inside;
+    }
+    return inside;
+}
+
+ClippedRuns clip_polyline(const std::vector<Polygon>& region,
+                          const std::vector<Eigen::Vector2d>& line, bool closed) {
+    ClippedRuns out;
+    if (line.size() < 2 || region.empty()) return out;
+    const ClipperLib::Paths clip = to_clipper(region);
+    if (!closed) {
+        out.runs = clip_open(clip, line);
+        return out;
+    }
+    // A closed line is clipped as an open one that starts outside, so that no run wraps round
+    // its start; wholly inside, it stays closed.
+    std::vector<Eigen::Vector2d> ring = line;
+    const auto outside = std::find_if(ring.begin(), ring.end(), [&](const Eigen::Vector2d& p) {
+        return !inside_region(region, p);
+    });
+    if (outside != ring.end()) {
+        std::rotate(ring.begin(), outside, ring.end());
+        ring.push_back(ring.front());
+        out.runs = clip_open(clip, ring);
+        return out;
+    }
+    ring.push_back(ring.front());
+    std::vector<std::vector<Eigen::Vector2d>> runs = clip_open(clip, ring);
+    if (runs.size() == 1 && (runs[0].front() - runs[0].back()).norm() < 1e-4) {
+        runs[0].pop_back();
+        out.runs = std::move(runs);
+        out.closed_inside = true;
+        return out;
+    }
+    // Every vertex inside, yet it leaves the region between two of them: start where a run
+    // starts (it enters the region there) and clip again.
+    if (runs.empty()) return out;
+    const Eigen::Vector2d entry = runs.front().front();
+    const double at = arc_position(ring, entry);
+    std::vector<Eigen::Vector2d> from_entry{entry}, before;
+    double arc = 0;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+        if (i > 0) arc += (ring[i] - ring[i - 1]).norm();
+        (arc > at ? from_entry : before).push_back(ring[i]);
+    }
+    from_entry.insert(from_entry.end(), before.begin(), before.end());
+    from_entry.push_back(entry);
+    out.runs = clip_open(clip, from_entry);
+    return out;
 }
 
 }  // namespace fibrecell::planner

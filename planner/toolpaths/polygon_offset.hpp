@@ -1,10 +1,11 @@
 #pragma once
-// Polygon offsets and island splitting on top of Clipper 6.4, the one place that knows Clipper's
-// integer coordinates (1 unit = 1e-5 mm: a 300 mm bed spans 3e7 units, far inside Clipper's
-// 64-bit range, and rounding stays below 1e-5 mm).
+// Polygon offsets, island splitting and clipping on top of Clipper 6.4, the one place that knows
+// Clipper's integer coordinates (1 unit = 1e-5 mm: a 300 mm bed spans 3e7 units, far inside
+// Clipper's 64-bit range, and rounding stays below 1e-5 mm).
 
 #include "planner/layers/layer_mesh.hpp"
 
+#include <array>
 #include <vector>
 
 namespace fibrecell::planner {
@@ -18,13 +19,39 @@ struct OffsetOptions {
 // orientation does not matter. Returns the offset region's loops [mm], outer loops counter-
 // clockwise, holes clockwise; empty when the region vanishes. Every returned vertex lies at
 // |delta_mm| from the input boundary (up to 1e-5 mm); chords of round joins may cut up to
-// arc_tolerance_mm closer. Throws std::invalid_argument on a loop with fewer than 3 points or a
-// non-finite coordinate.
+// 2.25 x arc_tolerance_mm closer (Clipper rounds a short arc's number of chords down). Throws
+// std::invalid_argument on a loop with fewer than 3 points or a non-finite coordinate.
 std::vector<Polygon> offset_region(const std::vector<Polygon>& loops, double delta_mm,
                                    const OffsetOptions& options = {});
 
 // Splits a region (read even-odd) into islands: each an outer loop (counter-clockwise) followed by
 // its holes (clockwise). An island inside a hole of another is its own island. Throws as above.
 std::vector<std::vector<Polygon>> split_islands(const std::vector<Polygon>& loops);
+
+// A straight piece of an outline [mm], from [0] to [1].
+using Segment2 = std::array<Eigen::Vector2d, 2>;
+
+// The region within radius_mm of any of `segments` (round caps: the union of their capsules), as
+// loops read even-odd; empty for no segments. Throws std::invalid_argument on a non-finite
+// coordinate or a non-positive radius.
+std::vector<Polygon> segment_band(const std::vector<Segment2>& segments, double radius_mm,
+                                  const OffsetOptions& options = {});
+
+// The region `a` minus the region `b` (both read even-odd), outer loops counter-clockwise.
+std::vector<Polygon> region_difference(const std::vector<Polygon>& a,
+                                       const std::vector<Polygon>& b);
+
+// p lies strictly inside the region (read even-odd); a point on its edge may go either way.
+bool inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& p);
+
+// The runs of the polyline `line` [mm] inside `region`, in the order and direction they come
+// along it; for a closed line the run through its first point is one run. A closed line wholly
+// inside comes back as the one run with `closed_inside` set. Points are rounded to 1e-5 mm.
+struct ClippedRuns {
+    std::vector<std::vector<Eigen::Vector2d>> runs;
+    bool closed_inside = false;
+};
+ClippedRuns clip_polyline(const std::vector<Polygon>& region,
+                          const std::vector<Eigen::Vector2d>& line, bool closed);
 
 }  // namespace fibrecell::planner

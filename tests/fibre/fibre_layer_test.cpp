@@ -25,29 +25,32 @@ struct PlateInTension {
 TEST(FibreLayer, PlateInUniformTensionGetsStraightFibresAlongTheLoad) {
     PlateInTension t;
     const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, {}, {});
-    // Straight runs from end to end along the load; Step 4 joins neighbouring runs' ends (less
-    // than 2W apart) across the plate's ends, so the runs make up serpentines.
+    // Straight runs from end to end along the load, stopping W/2 short of the plate's ends so
+    // the ribbon stays on the part; Step 4 joins neighbouring runs' ends (less than 2W apart)
+    // there, so the runs make up serpentines.
+    // W/2 in from each end, the ribbon inside the plate (and a few um for the offset's arcs).
+    const auto at_an_end = [](double x) {
+        return (x >= 0.5 && x < 0.51) || (x <= 59.5 && x > 59.49);
+    };
     std::set<double> run_y;
     for (const auto& p : r.paths) {
         EXPECT_EQ(p.role, PathRole::fibre);
         EXPECT_FALSE(p.closed);
         for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
             const Eigen::Vector2d a = p.points[i], b = p.points[i + 1];
-            if (std::abs(a.y() - b.y()) < 1e-6) {
-                run_y.insert(std::round(a.y() * 1e6) / 1e6);
+            if (std::abs(a.y() - b.y()) < 1e-4) {
+                run_y.insert(std::round(a.y() * 1e4) / 1e4);
                 continue;
             }
-            const bool at_an_end = (std::abs(a.x()) < 1e-9 && std::abs(b.x()) < 1e-9) ||
-                                   (std::abs(a.x() - 60) < 1e-9 && std::abs(b.x() - 60) < 1e-9);
-            EXPECT_TRUE(at_an_end) << a.transpose() << " -> " << b.transpose();
+            EXPECT_TRUE(at_an_end(a.x()) && at_an_end(b.x()))
+                << a.transpose() << " -> " << b.transpose();
             EXPECT_LT((b - a).norm(), 2.0);
         }
-        EXPECT_TRUE(std::abs(p.points.front().x()) < 1e-9 ||
-                    std::abs(p.points.front().x() - 60) < 1e-9);  // starts at a plate end
+        EXPECT_TRUE(at_an_end(p.points.front().x()));
     }
     ASSERT_GE(run_y.size(), 16u);
     for (auto it = std::next(run_y.begin()); it != run_y.end(); ++it) {
-        EXPECT_GE(*it - *std::prev(it), 1.0 - 1e-6);
+        EXPECT_GE(*it - *std::prev(it), 1.0 - 1e-4);
         EXPECT_LE(*it - *std::prev(it), 1.25);
     }
     EXPECT_LT(r.paths.size(), run_y.size() / 2) << "most runs are joined";
@@ -58,9 +61,9 @@ TEST(FibreLayer, PlateInUniformTensionGetsStraightFibresAlongTheLoad) {
 
 TEST(FibreLayer, BoundaryRingsFollowTheChosenEdgeAndCutEndsAreLinkedAlongIt) {
     PlateInTension t;
-    std::vector<int> left_edge;
-    for (int v = 0; v < static_cast<int>(t.layer.vertices.size()); ++v)
-        if (t.layer.vertices[v].x() == 0) left_edge.push_back(v);
+    // The outline edges along x = 0 (grid vertex i + 61 j).
+    std::vector<std::array<int, 2>> left_edge;
+    for (int j = 0; j < 40; ++j) left_edge.push_back({61 * j, 61 * (j + 1)});
     const FibreLayer r = plan_fibre_layer(t.layer, t.v_e, t.sigma_e, t.defined, left_edge,
                                           {.cutter_distance_mm = 10});
     int rings = 0;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace fibrecell::planner;
 
 namespace {
@@ -89,4 +91,21 @@ TEST(EndJoins, TakenEndsAreNotJoinedAgain) {
                           }())
                   .size(),
               1u);
+}
+
+TEST(PathChains, AJoinThatFoldsBackWithinWIsRefused) {
+    // Two runs 1.5 apart joined round their right ends: a U-turn that keeps W.
+    const auto parallel = runs(2);
+    EXPECT_TRUE(join_keeps_spacing(parallel, {}, {{0, true}, {1, true}, {}}, 1.0));
+    // A run leaving the join at 10 degrees back along the first: a V-shaped cusp whose arms are
+    // closer than W a few millimetres from the join.
+    const double a = 10.0 * 3.14159265358979 / 180;
+    const std::vector<Polyline> cusp = {
+        segment({0, 0}, {10, 0}),
+        segment({10, 0.2}, {10 - 10 * std::cos(a), 0.2 + 10 * std::sin(a)})};
+    EXPECT_FALSE(join_keeps_spacing(cusp, {}, {{0, true}, {1, false}, {}}, 1.0));
+    // The same cusp seen through an earlier link: the fibre is followed across it.
+    const std::vector<Polyline> three = {cusp[0], cusp[1], segment({20, 0.2}, {30, 0.2})};
+    EXPECT_FALSE(
+        join_keeps_spacing(three, {{{1, true}, {2, false}, {}}}, {{0, true}, {1, false}, {}}, 1.0));
 }
