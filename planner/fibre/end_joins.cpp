@@ -12,16 +12,6 @@ bool same(const PieceEnd& a, const PieceEnd& b) {
     return a.piece == b.piece && a.last == b.last;
 }
 
-// The whole straight link a-b lies in the region: clipped to it, nothing of it is lost (a chord
-// across a bend of the region's edge would be, though its sample points are inside).
-bool segment_inside(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
-                    const Eigen::Vector2d& b) {
-    double kept = 0;
-    for (const auto& run : clip_polyline(region, {a, b}, false).runs)
-        for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
-    return kept >= (b - a).norm() - 1e-4;
-}
-
 }  // namespace
 
 std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
@@ -77,7 +67,7 @@ std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
         const PieceEnd& eb = free_ends[p.b];
         const Eigen::Vector2d a = end_point(pieces, ea), b = end_point(pieces, eb);
         // The straight link's inner points must keep clear of every other curve.
-        bool clear = !options.keep_inside || segment_inside(*options.keep_inside, a, b);
+        bool clear = !options.keep_inside || segment_inside_region(*options.keep_inside, a, b);
         for (double t : {0.25, 0.5, 0.75}) {
             const Eigen::Vector2d x = a + t * (b - a);
             grid.around(x, [&](const TaggedSegment& s) {

@@ -4,7 +4,10 @@
 #include "planner/fibre/boundary_conformal.hpp"
 #include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/end_joins.hpp"
+#include "planner/fibre/fibre_region.hpp"
 #include "planner/fibre/layer_pieces.hpp"
+#include "planner/fibre/path_chains.hpp"
+#include "planner/fibre/ring_attach.hpp"
 #include "planner/fibre/scalar_field.hpp"
 #include "planner/layers/outline.hpp"
 #include "planner/stopwatch.hpp"
@@ -34,10 +37,12 @@ std::vector<Segment2> piece_selected(const LayerPiece& piece,
 }
 
 // Section 4.4 on one piece: the stress curves clipped to where fibre may lie, boundary rings and
-// their links where the piece has chosen boundary, then the joins of close ends. Adds the paths
-// to `paths`, the joins to `joins`.
-void connect_piece(const FibreRegion& region, std::vector<Polyline> curves, double w,
-                   std::vector<Toolpath>& paths, std::size_t& joins) {
+// their links where the piece has chosen boundary, the joins of close ends, then the rings too
+// short to cut joined onto neighbouring paths. Adds the paths to `out`, counts its joins.
+void connect_piece(const FibreRegion& region, std::vector<Polyline> curves,
+                   const FibreLayerOptions& options, FibreLayer& out,
+                   std::vector<Toolpath>& paths) {
+    const double w = options.spacing_mm;
     BoundaryConformal b = conform_to_boundary(region, curves, {.spacing_mm = w});
     // Links may run along the region's edge, where the curve ends lie: grown by a hair, the
     // region keeps them in.
@@ -46,9 +51,12 @@ void connect_piece(const FibreRegion& region, std::vector<Polyline> curves, doub
         join_close_ends(b.pieces, b.links, b.boundary,
                         {.max_gap_mm = 2 * w, .clearance_mm = w, .keep_inside = &link_region});
     b.links.insert(b.links.end(), close.begin(), close.end());
-    joins += b.links.size();
-    for (Polyline& c : join_pieces(b.pieces, b.links))
-        paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
+    out.joins += b.links.size();
+    std::vector<Polyline> chains = join_pieces(b.pieces, b.links);
+    out.rings_joined +=
+        attach_short_rings(chains, b.boundary, region.part,
+                           {.spacing_mm = w, .cutter_distance_mm = options.cutter_distance_mm});
+    for (Polyline& c : chains) paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
     for (Polyline& r : b.boundary)
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});
 }
@@ -89,7 +97,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         const FibreRegion region = fibre_region(
             layer_outline(piece.mesh), piece_selected(piece, selected_edges, layer.vertices.size()),
             {.spacing_mm = options.spacing_mm});
-        connect_piece(region, std::move(curves.curves), options.spacing_mm, paths, out.joins);
+        connect_piece(region, std::move(curves.curves), options, out, paths);
         out.timings.connection += clock.lap();
     }
     // The cutter sits this far behind the nozzle: a shorter path cannot be laid and cut.

@@ -38,6 +38,7 @@ struct FibreLayer {
     LayerField field;               // per triangle of the layer (for previews)
     std::size_t dropped_short = 0;  // paths shorter than the cutter distance
     std::size_t joins = 0;          // links made by the connection (Steps 3-4)
+    std::size_t rings_joined = 0;   // rings shorter than the cutter laid as part of a stress path
     // Smallest distance between two different paths, capped at 3W (0: fewer than two paths).
     double min_spacing_mm = 0;
     std::vector<std::string> warnings;  // e.g. "no tension in this layer"

@@ -93,12 +93,12 @@ FibreRegion fibre_region(const LayerOutline& outline, const std::vector<Segment2
     // the number of chords, down for a short arc): this much more keeps every chord W/2 from
     // the outline (and 2.5W from the selected boundary).
     const double chord = 2.5 * options.arc_tolerance_mm;
-    const std::vector<Polygon> inside = offset_region(outline.loops, -(w / 2 + chord), offset);
+    out.part = offset_region(outline.loops, -(w / 2 + chord), offset);
     if (selected.empty()) {
-        out.stress = inside;
+        out.stress = out.part;
         return out;
     }
-    out.stress = region_difference(inside, segment_band(selected, 2.5 * w + chord, offset));
+    out.stress = region_difference(out.part, segment_band(selected, 2.5 * w + chord, offset));
     const SelectedDistance distance(selected, 3 * w);
     out.rings =
         runs_on_selected(offset_region(outline.loops, -1.5 * w, offset), distance, 1.5 * w, w);

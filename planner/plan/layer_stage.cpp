@@ -26,6 +26,7 @@ struct LayerWork {
     std::vector<std::string> warnings;
     int dropped_short = 0;
     int joins = 0;
+    int rings_joined = 0;
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
@@ -106,6 +107,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.min_spacing = r.min_spacing_mm;
             w.joins = static_cast<int>(r.joins);
+            w.rings_joined = static_cast<int>(r.rings_joined);
             w.sigma = std::move(r.field.sigma_f);
             w.warnings = std::move(r.warnings);
             w.timings = r.timings;
@@ -137,6 +139,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         }
         st.dropped_short += w.dropped_short;
         st.fibre_joins += w.joins;
+        st.fibre_rings_joined += w.rings_joined;
         if (w.min_spacing > 0)
             st.fibre_min_spacing_mm = st.fibre_min_spacing_mm == 0
                                           ? w.min_spacing

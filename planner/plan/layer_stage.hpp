@@ -22,8 +22,9 @@ struct LayerStageStats {
     int fibre_paths = 0, dropped_short = 0;
     int fibre_boundary_paths = 0;  // of fibre_paths, boundary-conformal rings (Section 4.4)
     int fibre_joins = 0;           // curve ends joined by the connection (Section 4.4)
-    // Smallest distance between different fibre paths of a field-strategy layer, capped at 3W
-    // (0: none).
+    int fibre_rings_joined = 0;    // rings shorter than the cutter laid on from a stress path
+    // Smallest distance between two fibre points of a layer, between paths or within one (4W
+    // apart along it), capped at 3W (0: none); fibre_spacing_mm.
     double fibre_min_spacing_mm = 0;
     double fibre_min_length_mm = 0;  // shortest fibre path kept (0: none)
     // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).

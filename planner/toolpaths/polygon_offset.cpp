@@ -240,4 +240,12 @@ ClippedRuns clip_polyline(const std::vector<Polygon>& region,
     return out;
 }
 
+bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
+                           const Eigen::Vector2d& b) {
+    double kept = 0;
+    for (const auto& run : clip_polyline(region, {a, b}, false).runs)
+        for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
+    return kept >= (b - a).norm() - 1e-4;
+}
+
 }  // namespace fibrecell::planner

@@ -194,7 +194,8 @@ LayerStageStats check_guarantees(const JobSpec& job) {
               << " mm, nearest edge " << nearest_edge << " mm, ring distance median "
               << percentile(ring_distance, 0.5) << " p5 " << percentile(ring_distance, 0.05)
               << " p95 " << percentile(ring_distance, 0.95) << " mm, points outside " << outside
-              << "\n";
+              << ", rings joined " << r.stats.fibre_rings_joined << ", dropped short "
+              << r.stats.dropped_short << "\n";
     return r.stats;
 }
 
