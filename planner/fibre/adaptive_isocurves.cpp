@@ -2,6 +2,8 @@
 
 #include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/layer_pieces.hpp"
+#include "planner/fibre/spacing_trim.hpp"
+#include "planner/fibre/triangle_gradients.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +12,8 @@
 namespace fibrecell::planner {
 namespace {
 
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                           const Eigen::Vector2d& b) {
     const Eigen::Vector2d ab = b - a;
     const double len2 = ab.squaredNorm();
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
@@ -37,7 +40,8 @@ class SingleTriangleCheck {
             const double det = e1.x() * e2.y() - e1.y() * e2.x();
             if (std::abs(det) < 1e-300) continue;
             const double d1 = s[t[1]] - s[t[0]], d2 = s[t[2]] - s[t[0]];
-            const Eigen::Vector2d g((d1 * e2.y() - d2 * e1.y()) / det, (d2 * e1.x() - d1 * e2.x()) / det);
+            const Eigen::Vector2d g((d1 * e2.y() - d2 * e1.y()) / det,
+                                    (d2 * e1.x() - d1 * e2.x()) / det);
             steep_.push_back({static_cast<int>(f), lo, hi, hi - lo, g.norm()});
         }
         std::sort(steep_.begin(), steep_.end(),
@@ -77,7 +81,8 @@ class SingleTriangleCheck {
             const int a = tri[k], b = tri[(k + 1) % 3];
             if ((s_[a] >= iso) == (s_[b] >= iso)) continue;
             const double t = (iso - s_[a]) / (s_[b] - s_[a]);
-            (found++ == 0 ? p : q) = piece_.vertices[a] + t * (piece_.vertices[b] - piece_.vertices[a]);
+            (found++ == 0 ? p : q) =
+                piece_.vertices[a] + t * (piece_.vertices[b] - piece_.vertices[a]);
         }
         return found == 2 && (p - q).squaredNorm() > 0;
     }
@@ -95,6 +100,25 @@ class SingleTriangleCheck {
     double s_min_, s_max_, w_;
     std::vector<Triangle> steep_;
 };
+
+// The area-weighted q-quantile of |grad s| over the piece's triangles.
+double gradient_quantile(const LayerMesh& piece, const std::vector<double>& s, double q) {
+    std::vector<std::pair<double, double>> g;  // |grad s|, area
+    double total = 0;
+    for (int f = 0; f < static_cast<int>(piece.triangles.size()); ++f) {
+        const TriangleGradients t = triangle_gradients(piece, f);
+        const auto& tri = piece.triangles[static_cast<std::size_t>(f)];
+        const Eigen::Vector2d grad =
+            s[tri[0]] * t.grad[0] + s[tri[1]] * t.grad[1] + s[tri[2]] * t.grad[2];
+        g.emplace_back(grad.norm(), t.area);
+        total += t.area;
+    }
+    std::sort(g.begin(), g.end());
+    double area = 0;
+    for (const auto& [norm, a] : g)
+        if ((area += a) >= q * total) return norm;
+    return g.empty() ? 0.0 : g.back().first;
+}
 
 }  // namespace
 
@@ -117,6 +141,7 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
 
     const double w = options.spacing_mm;
     const double cap = 2.0 * w;  // farther than this, the exact distance does not matter
+    const double crowding = options.crowded_fraction;
     auto extract = [&](int n) {
         std::vector<double> isovalues(n);
         for (int i = 0; i < n; ++i) isovalues[i] = s_min + (0.5 + i) / n * (s_max - s_min);
@@ -125,6 +150,22 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
         out.count = n;
         out.min_distance_mm = min_neighbour_distance(out.curves, cap);
     };
+
+    if (crowding > 0 || options.density_scale != 1.0) {
+        // Neighbouring levels Delta apart in s lie Delta / |grad s| apart: with Delta = W times
+        // the |grad s| that all but the crowded fraction of the area stay below, that area gets
+        // curves at least W apart and the rest is cut back to W.
+        const double g = gradient_quantile(piece, s, 1 - crowding);
+        const double count =
+            g > 0 ? std::floor(options.density_scale * (s_max - s_min) / (w * g)) : 1;
+        extract(static_cast<int>(std::clamp(count, 1.0, double(options.max_curves))));
+        double before = 0, after = 0;
+        for (const Polyline& c : out.curves) before += polyline_length(c);
+        out.curves = trim_to_spacing(out.curves, out.count, {.spacing_mm = w});
+        for (const Polyline& c : out.curves) after += polyline_length(c);
+        out.trimmed_mm = before - after;
+        return out;
+    }
 
     // Steps 3-4: grow n until the curves are over-dense (d <= W).
     int n = std::max(1, static_cast<int>(std::ceil(out.geodesic_span_mm / w)));

@@ -1,5 +1,6 @@
 #include "planner/fibre/curve_spacing.hpp"
 
+#include "planner/fibre/polyline_resample.hpp"
 #include "planner/fibre/segment_grid.hpp"
 
 #include <algorithm>
@@ -36,29 +37,7 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
     return best;
 }
 
-namespace {
-
-// The path with points added so that no segment is longer than `step` (the closing segment of a
-// closed path too): within one path the nearest pair more than along_mm apart need not involve a
-// vertex, so the vertices must be dense enough to find it.
-std::vector<Eigen::Vector2d> densified(const std::vector<Eigen::Vector2d>& pts, bool closed,
-                                       double step) {
-    std::vector<Eigen::Vector2d> out;
-    const std::size_t n = pts.size();
-    const std::size_t count = closed && n > 2 ? n : (n == 0 ? 0 : n - 1);
-    for (std::size_t k = 0; k < count; ++k) {
-        const Eigen::Vector2d& a = pts[k];
-        const Eigen::Vector2d& b = pts[(k + 1) % n];
-        const int parts = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-        for (int j = 0; j < parts; ++j)
-            out.push_back(a + (b - a) * (static_cast<double>(j) / parts));
-    }
-    if (!closed && n > 0) out.push_back(pts.back());
-    if (closed && n <= 2) out = pts;
-    return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
                          const std::vector<char>& closed, double along_mm, double cap) {
@@ -66,7 +45,7 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
     std::vector<std::vector<Eigen::Vector2d>> paths;
     paths.reserve(given.size());
     for (std::size_t i = 0; i < given.size(); ++i)
-        paths.push_back(densified(given[i], closed[i], along_mm / 32));
+        paths.push_back(resampled(given[i], closed[i], along_mm / 32));
     // Segments tagged by their index in `segs`, which knows the path and where along it they lie.
     struct Piece {
         int path;

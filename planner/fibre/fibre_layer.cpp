@@ -5,6 +5,7 @@
 #include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/end_joins.hpp"
 #include "planner/fibre/fibre_region.hpp"
+#include "planner/fibre/laid_fibre.hpp"
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/path_chains.hpp"
 #include "planner/fibre/ring_attach.hpp"
@@ -85,8 +86,10 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         clock.lap();
         const std::vector<double> s = scalar_field(piece.mesh, u);
         out.timings.scalar_field += clock.lap();
-        AdaptiveIsocurves curves =
-            adaptive_isocurves(piece.mesh, s, {.spacing_mm = options.spacing_mm});
+        AdaptiveIsocurves curves = adaptive_isocurves(piece.mesh, s,
+                                                      {.spacing_mm = options.spacing_mm,
+                                                       .crowded_fraction = options.crowded_fraction,
+                                                       .density_scale = options.density_scale});
         out.timings.extraction += clock.lap();
         spdlog::debug(
             "fibre.piece z={:.3f} triangles={} span={:.1f}mm curves={} extractions={} "
@@ -100,12 +103,30 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         connect_piece(region, std::move(curves.curves), options, out, paths);
         out.timings.connection += clock.lap();
     }
-    // The cutter sits this far behind the nozzle: a shorter path cannot be laid and cut.
-    std::erase_if(paths, [&](const Toolpath& p) {
-        const bool too_short = path_length(p) < options.cutter_distance_mm;
-        out.dropped_short += too_short;
-        return too_short;
+    // Every step above keeps W by its own rule; laying the paths once more, rings first and
+    // then the longest first, makes it hold for the layer as a whole (a cut there is logged). The
+    // cutter sits cutter_distance_mm behind the nozzle: a shorter piece cannot be laid and cut.
+    std::stable_sort(paths.begin(), paths.end(), [](const Toolpath& a, const Toolpath& b) {
+        const bool ring_a = a.role == PathRole::fibre_boundary;
+        const bool ring_b = b.role == PathRole::fibre_boundary;
+        if (ring_a != ring_b) return ring_a;
+        return path_length(a) > path_length(b);
     });
+    LaidFibre laid(options.spacing_mm);
+    std::vector<Toolpath> kept;
+    for (const Toolpath& p : paths) {
+        const double length = path_length(p);
+        double laid_length = 0;
+        for (LaidPiece& piece : laid.lay(p.points, p.closed, options.cutter_distance_mm)) {
+            kept.push_back({p.role, piece.closed, std::move(piece.points)});
+            laid_length += path_length(kept.back());
+        }
+        if (length >= options.cutter_distance_mm && laid_length < length - 1e-6) ++out.spacing_cuts;
+    }
+    out.dropped_short += laid.dropped_short();
+    paths = std::move(kept);
+    if (out.spacing_cuts > 0)
+        spdlog::debug("fibre.layer z={:.3f}: {} paths cut to keep W", layer.z, out.spacing_cuts);
     if (paths.empty())
         out.warnings.push_back("layer at z = " + std::to_string(layer.z) +
                                ": no fibre path (no usable tension, or every isocurve shorter "

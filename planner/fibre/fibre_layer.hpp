@@ -19,6 +19,8 @@ namespace fibrecell::planner {
 struct FibreLayerOptions {
     LayerFieldOptions field;                               // smoothing iterations, p
     double spacing_mm = 1.0;                               // W
+    double crowded_fraction = 0;                           // see AdaptiveIsocurveOptions
+    double density_scale = 1;                              // see AdaptiveIsocurveOptions
     double cutter_distance_mm = paper_cutter_distance_mm;  // shorter fibre paths cannot be laid
     // A piece none of whose tets carries more tension than this gets no fibres: isovalues are
     // relative to the piece's own range, so without this a piece with only the rule-3 marker
@@ -38,6 +40,7 @@ struct FibreLayer {
     LayerField field;               // per triangle of the layer (for previews)
     std::size_t dropped_short = 0;  // paths shorter than the cutter distance
     std::size_t joins = 0;          // links made by the connection (Steps 3-4)
+    std::size_t spacing_cuts = 0;   // paths the final laying had to cut to keep W
     std::size_t rings_joined = 0;   // rings shorter than the cutter laid as part of a stress path
     // Smallest distance between two different paths, capped at 3W (0: fewer than two paths).
     double min_spacing_mm = 0;

@@ -3,6 +3,8 @@
 #include "config/yaml_section.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -125,6 +127,29 @@ LayerScheduleSpec read_layers(Section s) {
     return l;
 }
 
+// `none`, `baseline` or a positive number of metres per CCF layer.
+FibreBudget read_fibre_budget(Section& s) {
+    FibreBudget b;
+    if (!s.has("fibre_budget")) return b;
+    const YAML::Node n = s.node("fibre_budget");
+    const std::string text = n.IsScalar() ? n.as<std::string>() : "";
+    if (text == "none") return b;
+    if (text == "baseline") {
+        b.kind = FibreBudget::Kind::baseline;
+        return b;
+    }
+    char* end = nullptr;
+    const double metres = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !(metres > 0) ||
+        !std::isfinite(metres))
+        s.fail("fibre_budget",
+               "must be none, baseline or a positive length in metres per CCF layer, not '" + text +
+                   "'");
+    b.kind = FibreBudget::Kind::metres_per_layer;
+    b.metres_per_layer = metres;
+    return b;
+}
+
 PlannerSpec read_planner(Section s) {
     PlannerSpec p;
     const std::string strategy = s.choice("strategy", "field", {"field", "contour-zigzag"});
@@ -137,9 +162,12 @@ PlannerSpec read_planner(Section s) {
                                                   : IncompatibilityRule::any_neighbour;
     p.p = s.number("p", p.p, 0, 10);
     p.sigma_cap_percentile = s.number("sigma_cap_percentile", p.sigma_cap_percentile, 0, 100, true);
+    p.crowded_fraction = s.number("crowded_fraction", p.crowded_fraction, 0, 0.5);
+    p.fibre_budget = read_fibre_budget(s);
     p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
     p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);
-    if (s.has("cutter_distance_mm")) p.cutter_distance_mm = s.number("cutter_distance_mm", 0, 0, 10000);
+    if (s.has("cutter_distance_mm"))
+        p.cutter_distance_mm = s.number("cutter_distance_mm", 0, 0, 10000);
     s.finish();
     return p;
 }
@@ -149,7 +177,8 @@ HeadProcessSpec read_head(Section s, HeadProcessSpec h) {
     h.travel_speed_mm_s = s.number("travel_speed_mm_s", h.travel_speed_mm_s, 0, 1000, true);
     h.nozzle_temp_c = s.number("nozzle_temp_c", h.nozzle_temp_c, 0, 400);
     h.line_width_mm = s.number("line_width_mm", h.line_width_mm, 0.05, 20, false);
-    if (s.has("nozzle_diameter_mm")) h.nozzle_diameter_mm = s.number("nozzle_diameter_mm", 0, 0.05, 5);
+    if (s.has("nozzle_diameter_mm"))
+        h.nozzle_diameter_mm = s.number("nozzle_diameter_mm", 0, 0.05, 5);
     s.finish();
     return h;
 }

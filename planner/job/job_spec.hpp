@@ -54,6 +54,15 @@ struct LayerScheduleSpec {
 enum class Strategy { field, contour_zigzag };
 std::string_view to_string(Strategy s);
 
+// How much fibre a CCF layer gets (planner.fibre_budget): what the strategy lays by itself
+// (none), what the contour-zigzag baseline lays on the same layer (baseline: the paper's
+// comparison, same fibre in a different place), or a length per layer.
+struct FibreBudget {
+    enum class Kind { none, baseline, metres_per_layer };
+    Kind kind = Kind::none;
+    double metres_per_layer = 0;  // for metres_per_layer
+};
+
 struct PlannerSpec {
     Strategy strategy = Strategy::field;
     double mu = 3.0;   // rule-2 threshold |sigma_1 / sigma_2| < mu
@@ -63,8 +72,12 @@ struct PlannerSpec {
     // sigma_f is capped at this percentile of its layer before Eq. 5 (100: the paper, no cap), so
     // that one stress singularity does not set the spacing of the whole layer.
     double sigma_cap_percentile = 99.0;
-    double fibre_spacing_mm = 1.0;   // W: minimal spacing between fibre paths
-    int smoothing_iterations = 50;   // local Laplacian smoothing per layer
+    // The fraction of a piece's area where isocurves may crowd closer than W when n is chosen
+    // (0: the paper, the single closest pair decides); there they are cut back to W.
+    double crowded_fraction = 0.05;
+    double fibre_spacing_mm = 1.0;  // W: minimal spacing between fibre paths
+    FibreBudget fibre_budget;
+    int smoothing_iterations = 50;  // local Laplacian smoothing per layer
     // Cutter to nozzle tip as the job states it, if it does. It is the cell's hardware: the print
     // uses the cell's value and refuses a job that states another (daemon/print/print_settings).
     std::optional<double> cutter_distance_mm;

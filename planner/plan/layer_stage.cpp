@@ -1,5 +1,7 @@
 #include "planner/plan/layer_stage.hpp"
 
+#include "planner/plan/fibre_budget.hpp"
+
 #include "planner/fibre/curve_spacing.hpp"
 
 #include "planner/fibre/boundary_sources.hpp"
@@ -16,6 +18,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <optional>
 
 namespace fibrecell::planner {
 namespace {
@@ -30,7 +33,28 @@ struct LayerWork {
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
+    std::optional<BudgetFit> budget;  // when planner.fibre_budget applied to the layer
 };
+
+double fibre_length(const std::vector<Toolpath>& paths) {
+    double mm = 0;
+    for (const Toolpath& p : paths) mm += path_length(p);
+    return mm;
+}
+
+// The fibre [mm] planner.fibre_budget asks of CCF layer `i` (0: no budget, or nothing to meet).
+double budget_target_mm(const FibreBudget& budget, const LayerOutline& outline, int ccf_ordinal,
+                        const ContourZigzagOptions& baseline) {
+    switch (budget.kind) {
+        case FibreBudget::Kind::none:
+            return 0;
+        case FibreBudget::Kind::metres_per_layer:
+            return budget.metres_per_layer * 1000.0;
+        case FibreBudget::Kind::baseline:
+            return fibre_length(contour_zigzag_paths(outline, ccf_ordinal, baseline).paths);
+    }
+    return 0;
+}
 
 // The part's boundary faces in the job's boundary_fibres regions, on the bed.
 SelectedFaces boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
@@ -79,6 +103,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                    .p = job.planner.p,
                    .sigma_cap_percentile = job.planner.sigma_cap_percentile};
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
+    fibre.crowded_fraction = job.planner.crowded_fraction;
     fibre.cutter_distance_mm = options.cutter_distance_mm;
     const SelectedFaces boundary_fibre_faces = boundary_fibre_selection(job, field.model, placed);
 
@@ -95,14 +120,45 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             // pla_number is 1-based; the infill angle counts PLA layers from 0.
             w.layer.paths = pla_layer_paths(out.outlines[i], s.pla_number - 1, pla);
         } else if (job.planner.strategy == Strategy::contour_zigzag) {
-            auto r = contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], baseline);
+            // A budget of metres thins the zigzag (its density: W over its spacing); the
+            // baseline's own budget is what it lays.
+            const auto zigzag_at = [&](double density) {
+                ContourZigzagOptions o = baseline;
+                o.zigzag_spacing_mm = o.fibre_spacing_mm / density;
+                return contour_zigzag_paths(out.outlines[i], ccf_ordinal[i], o);
+            };
+            FibreLayerPaths r;
+            if (job.planner.fibre_budget.kind == FibreBudget::Kind::metres_per_layer) {
+                w.budget.emplace();
+                r = fit_budget(
+                    zigzag_at, [](const FibreLayerPaths& p) { return fibre_length(p.paths); },
+                    job.planner.fibre_budget.metres_per_layer * 1000.0, 1.0 / 32, 1.0, 1.0,
+                    *w.budget);
+            } else {
+                r = zigzag_at(1.0);
+            }
             w.layer.paths = std::move(r.paths);
             w.dropped_short = r.dropped_short;
             w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
-            FibreLayer r = plan_fibre_layer(
-                out.sections[i], v_placed, field.field.sigma_e, field.v_defined,
-                selected_outline_edges(out.sections[i], boundary_fibre_faces), fibre);
+            const auto edges = selected_outline_edges(out.sections[i], boundary_fibre_faces);
+            const auto fibre_at = [&](double density_scale) {
+                FibreLayerOptions o = fibre;
+                o.density_scale = density_scale;
+                return plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
+                                        field.v_defined, edges, o);
+            };
+            const double target = budget_target_mm(job.planner.fibre_budget, out.outlines[i],
+                                                   ccf_ordinal[i], baseline);
+            FibreLayer r;
+            if (target > 0) {
+                w.budget.emplace();
+                r = fit_budget(
+                    fibre_at, [](const FibreLayer& l) { return fibre_length(l.paths); }, target,
+                    1.0 / 16, 16.0, 1.0, *w.budget);
+            } else {
+                r = fibre_at(1.0);
+            }
             w.layer.paths = std::move(r.paths);
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.min_spacing = r.min_spacing_mm;
@@ -138,6 +194,22 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             min_length = min_length == 0 ? len : std::min(min_length, len);
         }
         st.dropped_short += w.dropped_short;
+        if (w.budget && w.budget->target_mm > 0) {
+            const BudgetFit& fit = *w.budget;
+            ++st.budget.layers;
+            st.budget.layers_met += fit.met();
+            st.budget.target_mm += fit.target_mm;
+            const double error = std::abs(fit.laid_mm - fit.target_mm) / fit.target_mm;
+            st.budget.worst_error = std::max(st.budget.worst_error, error);
+            if (!fit.met())
+                out.warnings.push_back(
+                    "layer at z = " + std::to_string(w.layer.z) + ": fibre budget " +
+                    std::to_string(fit.target_mm / 1000.0) + " m not met, " +
+                    std::to_string(fit.laid_mm / 1000.0) + " m laid (" +
+                    (fit.laid_mm < fit.target_mm ? "the layer holds no more fibre W apart"
+                                                 : "the strategy lays no less here") +
+                    ")");
+        }
         st.fibre_joins += w.joins;
         st.fibre_rings_joined += w.rings_joined;
         if (w.min_spacing > 0)

@@ -27,6 +27,12 @@ struct LayerStageStats {
     // apart along it), capped at 3W (0: none); fibre_spacing_mm.
     double fibre_min_spacing_mm = 0;
     double fibre_min_length_mm = 0;  // shortest fibre path kept (0: none)
+    // planner.fibre_budget, over the CCF layers it applied to (those with a target above 0).
+    struct Budget {
+        int layers = 0, layers_met = 0;  // within BudgetFit::tolerance of their target
+        double target_mm = 0;            // summed over those layers
+        double worst_error = 0;          // largest |laid - target| / target of a layer
+    } budget;
     // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
     double total_s = 0;        // all per-layer work, wall clock

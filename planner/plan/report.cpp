@@ -1,6 +1,5 @@
 #include "planner/plan/report.hpp"
 
-
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -69,9 +68,13 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
     report["fibre"] = {
         {"length_m", s.fibre_length_mm / 1000.0},   {"paths", s.fibre_paths},
         {"boundary_paths", s.fibre_boundary_paths}, {"joins", s.fibre_joins},
-        {"rings_joined", s.fibre_rings_joined},
-        {"dropped_short", s.dropped_short},         {"min_spacing_mm", s.fibre_min_spacing_mm},
-        {"min_length_mm", s.fibre_min_length_mm}};
+        {"rings_joined", s.fibre_rings_joined},     {"dropped_short", s.dropped_short},
+        {"min_spacing_mm", s.fibre_min_spacing_mm}, {"min_length_mm", s.fibre_min_length_mm}};
+    if (s.budget.layers > 0)
+        report["fibre"]["budget"] = {{"target_m", s.budget.target_mm / 1000.0},
+                                     {"layers", s.budget.layers},
+                                     {"layers_met", s.budget.layers_met},
+                                     {"worst_error", s.budget.worst_error}};
     report["pla"] = {{"length_m", s.pla_length_mm / 1000.0}};
     report["timings_s"]["layers"] = s.total_s;
     report["timings_s"]["per_layer_mean"] = {{"vector_field", s.mean_vector_field},

@@ -18,8 +18,8 @@ std::vector<Toolpath> island_paths(const std::vector<Polygon>& island,
     const OffsetOptions offset{options.arc_tolerance_mm};
     std::vector<Toolpath> rings;
     for (int i = 0; i < options.rings; ++i) {
-        const double inset = options.pitch_mm / 2 + i * options.pitch_mm;
-        std::vector<Polygon> loops = offset_region(island, -inset, offset);
+        std::vector<Polygon> loops =
+            offset_region(island, -contour_ring_inset_mm(i, options), offset);
         if (loops.empty()) break;
         for (Polygon& loop : loops) rings.push_back({options.ring_role, true, std::move(loop)});
     }
@@ -27,9 +27,9 @@ std::vector<Toolpath> island_paths(const std::vector<Polygon>& island,
 
     const std::vector<Polygon> fill_region =
         offset_region(island, -contour_fill_inset_mm(options), offset);
-    std::vector<Toolpath> fill =
-        zigzag_fill(fill_region, options.fill_role,
-                    {options.pitch_mm, options.angle_deg, options.max_link_spacings});
+    std::vector<Toolpath> fill = zigzag_fill(fill_region, options.fill_role,
+                                             {std::max(options.pitch_mm, options.fill_spacing_mm),
+                                              options.angle_deg, options.max_link_spacings});
     fill = order_nearest(std::move(fill), rings.empty() ? start : path_end(rings.back()));
 
     rings.insert(rings.end(), std::make_move_iterator(fill.begin()),
@@ -45,8 +45,25 @@ double squared_distance_to_loop(const Polygon& loop, const Eigen::Vector2d& at) 
 
 }  // namespace
 
+namespace {
+
+// Round joins are chords up to 2.25 arc tolerances inside their arcs (see offset_region).
+double chord_margin_mm(const ContourFillOptions& options) {
+    return options.ribbons_overlap ? 0.0 : 2.5 * options.arc_tolerance_mm;
+}
+
+}  // namespace
+
+double contour_ring_inset_mm(int ring, const ContourFillOptions& options) {
+    return options.pitch_mm / 2 + ring * options.pitch_mm + chord_margin_mm(options);
+}
+
 double contour_fill_inset_mm(const ContourFillOptions& options) {
-    return std::max(static_cast<double>(options.rings), 0.5) * options.pitch_mm;
+    const double rings = options.rings;
+    if (options.ribbons_overlap) return std::max(rings, 0.5) * options.pitch_mm;
+    // A whole pitch inside the innermost ring's inset (margin included), plus the margin for the
+    // region's own chords.
+    return (rings + 0.5) * options.pitch_mm + 2 * chord_margin_mm(options);
 }
 
 std::vector<Toolpath> contour_fill(const LayerOutline& outline, const ContourFillOptions& options) {

@@ -1,7 +1,7 @@
 #include "planner/toolpaths/contour_zigzag.hpp"
 
+#include "planner/fibre/laid_fibre.hpp"
 #include "planner/toolpaths/contour_fill.hpp"
-#include "planner/toolpaths/path_order.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -30,20 +30,24 @@ FibreLayerPaths contour_zigzag_paths(const LayerOutline& outline, int ccf_layer,
     ContourFillOptions fill;
     fill.pitch_mm = options.fibre_spacing_mm;
     fill.rings = options.boundary_rings;
+    fill.fill_spacing_mm = options.zigzag_spacing_mm;
     fill.angle_deg = contour_zigzag_angle_deg(ccf_layer, options);
     fill.ring_role = PathRole::fibre_boundary;
     fill.fill_role = PathRole::fibre;
+    fill.ribbons_overlap = false;
     fill.max_link_spacings = options.max_link_spacings;
     fill.arc_tolerance_mm = options.arc_tolerance_mm;
     fill.start_mm = options.start_mm;
 
+    // Rings and zigzag keep W from each other by their insets; laying them in print order cuts
+    // what still crowds (zigzag stubs where a scan line grazes the boundary, rings across a neck
+    // narrower than their pitch allows).
     FibreLayerPaths result;
-    for (Toolpath& path : contour_fill(outline, fill)) {
-        if (path_length(path) < options.cutter_distance_mm)
-            ++result.dropped_short;
-        else
-            result.paths.push_back(std::move(path));
-    }
+    LaidFibre laid(options.fibre_spacing_mm);
+    for (const Toolpath& path : contour_fill(outline, fill))
+        for (LaidPiece& piece : laid.lay(path.points, path.closed, options.cutter_distance_mm))
+            result.paths.push_back({path.role, piece.closed, std::move(piece.points)});
+    result.dropped_short = laid.dropped_short();
     return result;
 }
 

@@ -89,7 +89,8 @@ TEST(CurveSpacing, FibreSpacingCountsAPathComingBackNearItself) {
     EXPECT_NEAR(min_fibre_spacing({short_hairpin}, {0}, 4.0, 3.0), 3.0, 1e-12);
     // A closed ring of radius 5 mm never comes near itself; around the loop the short way.
     std::vector<P> ring;
-    for (int k = 0; k < 64; ++k) ring.emplace_back(5 * std::cos(k * M_PI / 32), 5 * std::sin(k * M_PI / 32));
+    for (int k = 0; k < 64; ++k)
+        ring.emplace_back(5 * std::cos(k * M_PI / 32), 5 * std::sin(k * M_PI / 32));
     EXPECT_NEAR(min_fibre_spacing({ring}, {1}, 4.0, 3.0), 3.0, 1e-12);
     // Different paths count at any distance along them.
     const std::vector<P> a = {{0, 0}, {10, 0}}, b = {{0, 0.8}, {10, 0.8}};
@@ -161,9 +162,40 @@ TEST(AdaptiveIsocurves, StepsDownAsThePaperDoesWhereTheSpacingIsNotMonotone) {
     // Fast: most counts on the way down are ruled out without extracting them.
     EXPECT_GT(r.counts_ruled_out, 0);
     EXPECT_LT(r.extractions, over_dense - n);
-    std::printf("over-dense n %d; step-down n %d (spacing %.2f mm), bisection n %d (%.2f mm); "
-                "%d extractions, %d counts ruled out\n",
-                over_dense, n, spacing(n), fits, spacing(fits), r.extractions, r.counts_ruled_out);
+    std::printf(
+        "over-dense n %d; step-down n %d (spacing %.2f mm), bisection n %d (%.2f mm); "
+        "%d extractions, %d counts ruled out\n",
+        over_dense, n, spacing(n), fits, spacing(fits), r.extractions, r.counts_ruled_out);
+}
+
+// One crowded band (16 times the stress over 0.5 mm) sets the paper's n for the whole strip; with
+// a crowded fraction the rest of the strip gets fibre at about W, the band's crowded curves are
+// cut, and no two curves come nearer than W (measured on their x positions: they are vertical).
+TEST(AdaptiveIsocurves, ACrowdedBandIsCutBackInsteadOfThinningTheWholeLayer) {
+    const LayerMesh m = grid_layer(60, 10, 120, 10);
+    const auto S = [](double x) {
+        return x <= 40.5 ? x : x <= 41 ? 40.5 + 16 * (x - 40.5) : 48.5 + (x - 41);
+    };
+    std::vector<double> s;
+    for (const auto& v : m.vertices) s.push_back(S(v.x()));
+    const double w = 1.0;
+    const AdaptiveIsocurves paper = adaptive_isocurves(m, s, {.spacing_mm = w});
+    const AdaptiveIsocurves crowded =
+        adaptive_isocurves(m, s, {.spacing_mm = w, .crowded_fraction = 0.05});
+    std::vector<double> xs;
+    for (const auto& c : crowded.curves) {
+        for (const auto& p : c.points) EXPECT_NEAR(p.x(), c.points.front().x(), 1e-9);
+        EXPECT_NEAR(polyline_length(c), 10, 1e-9);  // cut curves are cut whole here
+        xs.push_back(c.points.front().x());
+    }
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t i = 1; i < xs.size(); ++i) EXPECT_GE(xs[i] - xs[i - 1], w - 0.005);
+    // The strip outside the band is 59.5 mm wide: about one curve per W of it.
+    EXPECT_GE(static_cast<int>(xs.size()), 50);
+    EXPECT_GT(static_cast<int>(xs.size()), 2 * paper.count);
+    EXPECT_GT(crowded.trimmed_mm, 0);
+    std::printf("paper n %d; with 5%% crowding n %d, %zu curves kept, %.0f mm cut back\n",
+                paper.count, crowded.count, xs.size(), crowded.trimmed_mm);
 }
 
 // The counts ruled out without an extraction are never ones the paper's step-down would keep:

@@ -25,7 +25,9 @@ class JobSpecTest : public ::testing::Test {
         std::ofstream(dir_ / "part_stress.txt") << "";
     }
 
-    JobSpec parse(const std::string& text) { return parse_job(text, "job.yaml", dir_.string(), JobFiles::anywhere); }
+    JobSpec parse(const std::string& text) {
+        return parse_job(text, "job.yaml", dir_.string(), JobFiles::anywhere);
+    }
     std::string error(const std::string& text) {
         try {
             parse(text);
@@ -68,6 +70,10 @@ TEST_F(JobSpecTest, MinimalJobGetsThePapersDefaults) {
     EXPECT_DOUBLE_EQ(j.planner.p, 1.0);
     EXPECT_DOUBLE_EQ(j.planner.fibre_spacing_mm, 1.0);
     EXPECT_EQ(j.planner.smoothing_iterations, 50);
+    // Two defaults differ from the paper against stress singularities (docs/job-format.md).
+    EXPECT_DOUBLE_EQ(j.planner.sigma_cap_percentile, 99.0);
+    EXPECT_DOUBLE_EQ(j.planner.crowded_fraction, 0.05);
+    EXPECT_EQ(j.planner.fibre_budget.kind, FibreBudget::Kind::none);
     EXPECT_FALSE(j.planner.cutter_distance_mm);  // the cell's, unless the job says
     EXPECT_DOUBLE_EQ(j.layers.pla_layer_height_mm, 0.8);
     EXPECT_DOUBLE_EQ(j.layers.ccf_layer_height_mm, 0.05);
@@ -108,6 +114,23 @@ TEST_F(JobSpecTest, LayerScheduleForms) {
     EXPECT_FALSE(every.has_ccf_after(1));
     EXPECT_TRUE(every.has_ccf_after(2) && every.has_ccf_after(4));
     EXPECT_FALSE(every.has_ccf_after(5));
+}
+
+TEST_F(JobSpecTest, FibreBudgetForms) {
+    auto budget = [&](const std::string& value) {
+        return parse(std::string(kMinimal) + "planner:\n  fibre_budget: " + value + "\n")
+            .planner.fibre_budget;
+    };
+    EXPECT_EQ(budget("none").kind, FibreBudget::Kind::none);
+    EXPECT_EQ(budget("baseline").kind, FibreBudget::Kind::baseline);
+    const FibreBudget metres = budget("2.5");
+    EXPECT_EQ(metres.kind, FibreBudget::Kind::metres_per_layer);
+    EXPECT_DOUBLE_EQ(metres.metres_per_layer, 2.5);
+    for (const char* bad : {"-1", "0", "lots", "2.5m", "[1, 2]"})
+        EXPECT_THAT(error(std::string(kMinimal) + "planner:\n  fibre_budget: " + bad + "\n"),
+                    HasSubstr("planner.fibre_budget: must be none, baseline or a positive length "
+                              "in metres per CCF layer"))
+            << bad;
 }
 
 TEST_F(JobSpecTest, ErrorsNameTheKey) {

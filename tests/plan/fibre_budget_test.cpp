@@ -1,0 +1,105 @@
+// planner.fibre_budget: the search on a known length curve, then the tensile bar planned to a
+// length per layer by both strategies, measured from the paths themselves.
+
+#include "planner/plan/fibre_budget.hpp"
+
+#include "planner/job/job_spec.hpp"
+#include "planner/plan/layer_stage.hpp"
+#include "tests/support/plan_inputs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fibrecell::planner;
+
+namespace {
+
+// Fibre of every CCF layer [mm], summed from the path points.
+std::vector<double> ccf_lengths(const LayerStageResult& r) {
+    std::vector<double> out;
+    for (const ToolpathLayer& layer : r.layers) {
+        if (layer.head != Head::ccf) continue;
+        double mm = 0;
+        for (const Toolpath& p : layer.paths) {
+            for (std::size_t k = 1; k < p.points.size(); ++k)
+                mm += (p.points[k] - p.points[k - 1]).norm();
+            if (p.closed) mm += (p.points.front() - p.points.back()).norm();
+        }
+        out.push_back(mm);
+    }
+    return out;
+}
+
+JobSpec tensile_bar(const std::string& budget, Strategy strategy) {
+    JobSpec job = load_job_file(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+    job.planner.strategy = strategy;
+    if (budget == "baseline")
+        job.planner.fibre_budget.kind = FibreBudget::Kind::baseline;
+    else
+        job.planner.fibre_budget = {FibreBudget::Kind::metres_per_layer, std::stod(budget)};
+    return job;
+}
+
+}  // namespace
+
+TEST(FitBudget, FindsTheKnobOfARisingLengthWithinFivePercent) {
+    int plans = 0;
+    const auto plan = [&](double knob) {
+        ++plans;
+        return 1000 * std::floor(10 * std::sqrt(knob)) / 10;  // steps of 100 mm
+    };
+    const auto length = [](double mm) { return mm; };
+    BudgetFit fit;
+    const double laid = fit_budget(plan, length, 2000, 1.0 / 16, 16, 1, fit);
+    EXPECT_TRUE(fit.met());
+    EXPECT_NEAR(laid, 2000, 100);
+    EXPECT_EQ(fit.tries, plans);
+    EXPECT_LE(plans, 10);
+}
+
+TEST(FitBudget, AnUnreachableTargetStopsAtTheFullEndAndSaysSo) {
+    const auto plan = [](double knob) { return std::min(knob, 4.0) * 100; };
+    const auto length = [](double mm) { return mm; };
+    BudgetFit fit;
+    EXPECT_DOUBLE_EQ(fit_budget(plan, length, 1000, 1.0 / 16, 16, 1, fit), 400);
+    EXPECT_FALSE(fit.met());
+    EXPECT_EQ(fit.tries, 2);  // the start and the far end
+    EXPECT_DOUBLE_EQ(fit.knob, 16);
+}
+
+// Both strategies meet a length per CCF layer that lies between what they lay by themselves
+// (field 1.52 m, contour-zigzag 2.29 m per layer) and nothing.
+TEST(FibreBudget, BothStrategiesLayTheMetresPerLayerAskedWithinFivePercent) {
+    for (const auto& [strategy, metres] :
+         {std::pair{Strategy::field, 1.2}, std::pair{Strategy::contour_zigzag, 1.5}}) {
+        const JobSpec job = tensile_bar(std::to_string(metres), strategy);
+        const LayerStageResult r = run_layer_stage(job, fibrecell::test::field_stage_of(job));
+        const std::vector<double> lengths = ccf_lengths(r);
+        ASSERT_EQ(lengths.size(), 5u);
+        for (double mm : lengths) EXPECT_NEAR(mm, metres * 1000, 0.05 * metres * 1000);
+        EXPECT_EQ(r.stats.budget.layers, 5);
+        EXPECT_EQ(r.stats.budget.layers_met, 5);
+        EXPECT_LE(r.stats.budget.worst_error, 0.05);
+        EXPECT_TRUE(r.warnings.empty());
+    }
+}
+
+// The baseline's 2.29 m per layer is more than the field strategy can lay W apart on the bar:
+// it lays as much as it can, more than by itself, and each layer says the budget was not met.
+TEST(FibreBudget, ABaselineBudgetTheLayerCannotHoldIsApproachedAndReported) {
+    const JobSpec job = tensile_bar("baseline", Strategy::field);
+    const FieldStageResult field = fibrecell::test::field_stage_of(job);
+    const LayerStageResult r = run_layer_stage(job, field);
+    JobSpec plain = job;
+    plain.planner.fibre_budget = {};
+    const LayerStageResult own = run_layer_stage(plain, field);
+    EXPECT_GT(r.stats.fibre_length_mm, 1.05 * own.stats.fibre_length_mm);
+    EXPECT_EQ(r.stats.budget.layers, 5);
+    EXPECT_EQ(r.stats.budget.layers_met, 0);
+    EXPECT_NEAR(r.stats.budget.target_mm / 1000, 11.47, 0.1);
+    ASSERT_EQ(r.warnings.size(), 5u);
+    EXPECT_NE(r.warnings[0].find("fibre budget"), std::string::npos);
+    EXPECT_NE(r.warnings[0].find("holds no more fibre W apart"), std::string::npos);
+    EXPECT_GE(r.stats.fibre_min_spacing_mm, 0.99);
+}
