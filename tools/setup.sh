@@ -51,8 +51,13 @@ run_demo() {
     done
     echo "demo: fibrecelld (simulated cell) is up on $sock; log: $log"
     export FIBRECELL_SOCKET="$sock"
-    "$release_dir/tools/fibrecell" submit "$root/examples/loop/loop.job.yaml" --start --watch
+    # The cell's state is shown whatever the outcome; the exit status is the print's (0 only
+    # for completed).
+    local outcome=0
+    "$release_dir/tools/fibrecell" submit "$root/examples/loop/loop.job.yaml" --start --watch ||
+        outcome=$?
     "$release_dir/tools/fibrecell" status
+    return "$outcome"
 }
 
 release_dir="$root/build/release"
