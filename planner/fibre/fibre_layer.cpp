@@ -17,6 +17,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <tuple>
 
 namespace fibrecell::planner {
 
@@ -106,16 +107,15 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
     // Every step above keeps W by its own rule; laying the paths once more, rings first and
     // then the longest first, makes it hold for the layer as a whole (a cut there is logged). The
     // cutter sits cutter_distance_mm behind the nozzle: a shorter piece cannot be laid and cut.
-    std::stable_sort(paths.begin(), paths.end(), [](const Toolpath& a, const Toolpath& b) {
-        const bool ring_a = a.role == PathRole::fibre_boundary;
-        const bool ring_b = b.role == PathRole::fibre_boundary;
-        if (ring_a != ring_b) return ring_a;
-        return path_length(a) > path_length(b);
-    });
+    std::vector<std::tuple<bool, double, std::size_t>> order;  // not a ring, -length, index
+    for (std::size_t i = 0; i < paths.size(); ++i)
+        order.emplace_back(paths[i].role != PathRole::fibre_boundary, -path_length(paths[i]), i);
+    std::sort(order.begin(), order.end());
     LaidFibre laid(options.spacing_mm);
     std::vector<Toolpath> kept;
-    for (const Toolpath& p : paths) {
-        const double length = path_length(p);
+    for (const auto& [not_ring, minus_length, i] : order) {
+        const Toolpath& p = paths[i];
+        const double length = -minus_length;
         double laid_length = 0;
         for (LaidPiece& piece : laid.lay(p.points, p.closed, options.cutter_distance_mm)) {
             kept.push_back({p.role, piece.closed, std::move(piece.points)});
