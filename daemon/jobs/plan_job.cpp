@@ -4,6 +4,7 @@
 #include "daemon/sync/board_commands.hpp"
 #include "planner/io/read_model.hpp"
 #include "planner/io/vtk_writer.hpp"
+#include "planner/plan/analysis_svg.hpp"
 #include "planner/plan/preview_svg.hpp"
 #include "planner/plan/report.hpp"
 #include "planner/plan/toolpaths_json.hpp"
@@ -18,8 +19,24 @@
 namespace fibrecell::daemon::jobs {
 namespace {
 
-void write_layer_outputs(print::PlanWriter& out, const planner::JobSpec& job,
-                         const planner::LayerStageResult& layers) {
+// The paper's analyses beside the layers: Fig. 8 always, Fig. 9 when a sweep ran.
+std::vector<planner::PreviewFigure> analysis_figures(const PlanJobResult& r) {
+    std::vector<planner::PreviewFigure> figures;
+    figures.push_back({{"neighbour_dots.svg",
+                        planner::neighbour_dots_svg(r.field.neighbour_dots, r.job.planner.eta)},
+                       std::string("Dot products of neighbouring directions ") +
+                           (r.job.planner.mst_reorientation ? "after the MST re-orientation"
+                                                            : "without the MST re-orientation") +
+                           " (paper Fig. 8)"});
+    if (r.sweep)
+        figures.push_back({{"sweep.svg", planner::sweep_svg(*r.sweep)},
+                           "Fibre length against " + r.sweep->parameter + " (paper Fig. 9)"});
+    return figures;
+}
+
+void write_layer_outputs(print::PlanWriter& out, const PlanJobResult& r) {
+    const planner::JobSpec& job = r.job;
+    const planner::LayerStageResult& layers = *r.layers;
     out.write("toolpaths.json",
               planner::toolpaths_json_text(to_string(job.planner.strategy), layers.layers));
     // Fibre layers of the field strategy are drawn over their sigma map.
@@ -30,7 +47,8 @@ void write_layer_outputs(print::PlanWriter& out, const planner::JobSpec& job,
         maps[i] = {&layers.sections[i], layers.sigma[i]};
         backgrounds[i] = &maps[i];
     }
-    for (const auto& f : planner::preview_files(layers.layers, layers.outlines, backgrounds))
+    for (const auto& f : planner::preview_files(layers.layers, layers.outlines, backgrounds, {},
+                                                analysis_figures(r)))
         out.write("preview/" + f.name, f.text);
 }
 
@@ -71,11 +89,14 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
     r.field.timings.read = read_s;
     control.check_cancel();
     if (request.last_stage == PlanStage::layers) {
-        r.layers = planner::run_layer_stage(
-            r.job, r.field,
-            {.cutter_distance_mm = r.settings.cutter_distance_mm, .executor = request.executor},
-            control);
+        const planner::LayerStageOptions options{
+            .cutter_distance_mm = r.settings.cutter_distance_mm, .executor = request.executor};
+        r.layers = planner::run_layer_stage(r.job, r.field, options, control);
         control.check_cancel();
+        if (request.sweep) {
+            r.sweep = request.sweep;
+            planner::run_sweep(*r.sweep, r.job, r.field, options, control);
+        }
     }
     control.report("write", 0.0);
     out.write("field.vtk", planner::field_vtk_text(r.field.model.mesh,
@@ -83,8 +104,9 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
                                                     &r.field.field.v_e, &r.field.v_defined}));
     r.report = planner::field_stage_report(r.job, r.field);
     if (r.layers) {
-        write_layer_outputs(out, r.job, *r.layers);
+        write_layer_outputs(out, r);
         planner::add_layer_stage_report(r.report, *r.layers);
+        if (r.sweep) planner::add_sweep_report(r.report, *r.sweep);
         control.check_cancel();
         control.report("robot", 0.0);
         r.robot = print::plan_robot(r.layers->layers, request.cell.robot, r.settings, r.job.name);
@@ -95,13 +117,12 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
                 " layers has a toolpath (is the part smaller than the nozzle's line, or "
                 "placed outside the bed?)");
         print::add_robot_report(r.report, *r.robot);
-        print::write_print_files(
-            out, *r.robot,
-            {.job = r.job.name,
-             .strategy = std::string(to_string(r.job.planner.strategy)),
-             .layers = r.layers->layers.size(),
-             .settings = r.settings,
-             .board = board_summary(r.settings, request.cell.extruder)});
+        print::write_print_files(out, *r.robot,
+                                 {.job = r.job.name,
+                                  .strategy = std::string(to_string(r.job.planner.strategy)),
+                                  .layers = r.layers->layers.size(),
+                                  .settings = r.settings,
+                                  .board = board_summary(r.settings, request.cell.extruder)});
     }
     control.check_cancel();
     r.report["settings"] = print::to_json(r.settings);

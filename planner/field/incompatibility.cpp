@@ -1,6 +1,7 @@
 #include "planner/field/incompatibility.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fibrecell::planner {
 
@@ -30,16 +31,32 @@ bool incompatible(std::uint32_t disagreeing, std::uint32_t neighbours, Incompati
 
 }  // namespace
 
+void DotHistogram::add(double dot) {
+    const int bin = static_cast<int>(std::floor((dot + 1.0) * 0.5 * bin_count));
+    ++counts[static_cast<std::size_t>(std::clamp(bin, 0, bin_count - 1))];
+    ++pairs;
+}
+
 NeighbourAgreement neighbour_agreement(const std::vector<Eigen::Vector3d>& v_e,
                                        const CsrGraph& neighbours, double eta) {
     NeighbourAgreement a;
     a.disagreeing.assign(v_e.size(), 0);
     a.neighbours.assign(v_e.size(), 0);
     for (std::size_t e = 0; e < v_e.size(); ++e) {
-        const auto around = neighbours.neighbours(static_cast<int>(e));
+        const int ei = static_cast<int>(e);
+        const auto around = neighbours.neighbours(ei);
         a.neighbours[e] = static_cast<std::uint32_t>(around.size());
-        for (int n : around)
-            if (v_e[e].dot(v_e[n]) <= eta) ++a.disagreeing[e];
+        // The later half of the sorted list: the earlier neighbours met this pair already.
+        for (auto it = std::upper_bound(around.begin(), around.end(), ei); it != around.end();
+             ++it) {
+            const double dot = v_e[e].dot(v_e[*it]);
+            a.dots.add(dot);
+            if (dot <= eta) {
+                ++a.disagreeing[e];
+                ++a.disagreeing[*it];
+                ++a.dots.at_most_eta;
+            }
+        }
     }
     return a;
 }

@@ -160,6 +160,8 @@ PlannerSpec read_planner(Section s) {
     p.incompatibility_rule = rule == "all"        ? IncompatibilityRule::all_neighbours
                              : rule == "majority" ? IncompatibilityRule::majority
                                                   : IncompatibilityRule::any_neighbour;
+    p.mst_reorientation = s.get_or("mst_reorientation", p.mst_reorientation);
+    p.incompatibility_removal = s.get_or("incompatibility_removal", p.incompatibility_removal);
     p.p = s.number("p", p.p, 0, 10);
     p.sigma_cap_percentile = s.number("sigma_cap_percentile", p.sigma_cap_percentile, 0, 100, true);
     p.crowded_fraction = s.number("crowded_fraction", p.crowded_fraction, 0, 0.5);

@@ -68,6 +68,10 @@ struct PlannerSpec {
     double mu = 3.0;   // rule-2 threshold |sigma_1 / sigma_2| < mu
     double eta = 0.5;  // incompatibility threshold (Eq. 2)
     IncompatibilityRule incompatibility_rule = IncompatibilityRule::all_neighbours;
+    // The field processing of Section 4.1, each step switchable for the paper's ablation (its
+    // Fig. 10: without them the toolpaths turn and oscillate).
+    bool mst_reorientation = true;
+    bool incompatibility_removal = true;
     double p = 1.0;  // density exponent of u_f = sigma^p v/|v| (Eq. 5)
     // sigma_f is capped at this percentile of its layer before Eq. 5 (100: the paper, no cap), so
     // that one stress singularity does not set the spacing of the whole layer.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
 
 namespace fibrecell::planner {
@@ -13,8 +14,47 @@ FibreQualitySums& FibreQualitySums::operator+=(const FibreQualitySums& o) {
     weight += o.weight;
     density.insert(density.end(), o.density.begin(), o.density.end());
     stress_p.insert(stress_p.end(), o.stress_p.begin(), o.stress_p.end());
+    turning_rad += o.turning_rad;
+    turned_length_mm += o.turned_length_mm;
     return *this;
 }
+
+double FibreQualitySums::turning_deg_per_m() const {
+    return turned_length_mm > 0 ? turning_rad * 180.0 / std::numbers::pi / (turned_length_mm / 1e3)
+                                : 0.0;
+}
+
+namespace {
+
+// Points every `chord` mm of arc length along a path (a closed one back to its start).
+std::vector<Eigen::Vector2d> arc_samples(const Toolpath& path, double chord) {
+    std::vector<Eigen::Vector2d> out;
+    const std::size_t n = path.points.size();
+    if (n < 2) return out;
+    out.push_back(path.points.front());
+    double carried = 0;  // arc length since the last sample
+    for (std::size_t i = 0; i + 1 < n + (path.closed ? 1 : 0); ++i) {
+        const Eigen::Vector2d a = path.points[i], b = path.points[(i + 1) % n];
+        const double len = (b - a).norm();
+        double at = chord - carried;
+        for (; at <= len; at += chord) out.push_back(a + (b - a) * (at / len));
+        carried = len - (at - chord);
+    }
+    return out;
+}
+
+// The absolute heading change between successive chords, over the length they cover.
+void add_turning(FibreQualitySums& sums, const Toolpath& path, double chord) {
+    const std::vector<Eigen::Vector2d> s = arc_samples(path, chord);
+    const std::size_t chords = s.size() < 2 ? 0 : s.size() - 1;
+    for (std::size_t i = 1; i < chords; ++i) {
+        const Eigen::Vector2d u = s[i] - s[i - 1], v = s[i + 1] - s[i];
+        sums.turning_rad += std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)));
+    }
+    sums.turned_length_mm += static_cast<double>(chords) * chord;
+}
+
+}  // namespace
 
 double FibreQualitySums::density_correlation() const {
     const std::size_t n = density.size();
@@ -59,6 +99,7 @@ FibreQualitySums fibre_quality(const LayerMesh& layer, const std::vector<Toolpat
             area * std::pow(std::max(sigma_e[layer.triangle_tet[f]], 0.0), options.p);
     }
     for (const Toolpath& path : paths) {
+        add_turning(sums, path, options.turning_chord_mm);
         const std::size_t n = path.points.size();
         for (std::size_t i = 0; i + 1 < n + (path.closed ? 1 : 0); ++i) {
             const Eigen::Vector2d a = path.points[i], b = path.points[(i + 1) % n];

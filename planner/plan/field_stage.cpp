@@ -49,7 +49,8 @@ FeaSummary summarise(const FeaResult& r, const LoadCase& lc) {
 
 }  // namespace
 
-FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model, const StepControl& control) {
+FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model,
+                                 const StepControl& control) {
     FieldStageResult out;
     Stopwatch clock;
     out.model = std::move(model);
@@ -76,13 +77,19 @@ FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model, const St
     out.field = tensile_field(*out.model.stress, {job.planner.mu});
     out.timings.principal = clock.lap();
 
-    out.mst = mst_reorient(out.field.v_e, out.field.sigma_e, faces, control);
+    if (job.planner.mst_reorientation)
+        out.mst = mst_reorient(out.field.v_e, out.field.sigma_e, faces, control);
     out.timings.mst_reorientation = clock.lap();
 
     control.report("incompatible_removal", 0.0);
     const CsrGraph around = vertex_sharing_neighbours(out.model.mesh);
-    const NeighbourAgreement agreement = neighbour_agreement(out.field.v_e, around, job.planner.eta);
-    out.v_defined = compatible_directions(agreement, job.planner.incompatibility_rule);
+    const NeighbourAgreement agreement =
+        neighbour_agreement(out.field.v_e, around, job.planner.eta);
+    out.neighbour_dots = agreement.dots;
+    // Off, every direction stays (the ablation); the counts still fill the report.
+    out.v_defined = job.planner.incompatibility_removal
+                        ? compatible_directions(agreement, job.planner.incompatibility_rule)
+                        : std::vector<std::uint8_t>(out.field.v_e.size(), 1);
     out.removed =
         static_cast<std::size_t>(std::count(out.v_defined.begin(), out.v_defined.end(), 0));
     // Every reading of Eq. 2 from the same counts, for the report.
@@ -93,11 +100,12 @@ FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model, const St
 
     out.timings.total = clock.elapsed();
     spdlog::info(
-        "plan.field mst {:.3f} s ({} components, {} flipped), removal {:.3f} s "
-        "({} of {} undefined, rule {})",
+        "plan.field mst {:.3f} s ({} components, {} flipped{}), removal {:.3f} s "
+        "({} of {} undefined, rule {}{})",
         out.timings.mst_reorientation, out.mst.components, out.mst.flipped,
-        out.timings.incompatible_removal, out.removed, out.v_defined.size(),
-        to_string(job.planner.incompatibility_rule));
+        job.planner.mst_reorientation ? "" : "; off", out.timings.incompatible_removal, out.removed,
+        out.v_defined.size(), to_string(job.planner.incompatibility_rule),
+        job.planner.incompatibility_removal ? "" : "; off");
     return out;
 }
 

@@ -2,6 +2,7 @@
 // The first planning stage (paper Section 4.1): read the model, get its stress (from the file or
 // the built-in FEA), and turn it into the processed 3D tensile direction field.
 
+#include "planner/field/incompatibility.hpp"
 #include "planner/field/mst_reorientation.hpp"
 #include "planner/field/tensile_field.hpp"
 #include "planner/job/job_spec.hpp"
@@ -37,8 +38,9 @@ struct FieldStageResult {
     VolumeModel model;                    // mesh in the model frame, stress filled in
     TensileField field;                   // v_e re-oriented by the MST
     std::vector<std::uint8_t> v_defined;  // 0 where incompatibility removal undefined v_e
-    MstReorientationResult mst;
-    std::size_t removed = 0;  // elements with v_e undefined
+    MstReorientationResult mst;           // empty when planner.mst_reorientation is off
+    DotHistogram neighbour_dots;          // v_e.v_e* of neighbours, before the removal (Fig. 8)
+    std::size_t removed = 0;  // elements with v_e undefined (0 when the removal is off)
     // The fraction each reading of Eq. 2 would undefine, indexed by IncompatibilityRule, so the
     // report can compare them on every part.
     std::array<double, 3> removed_fraction_by_rule = {0, 0, 0};

@@ -1,5 +1,6 @@
 #include "planner/plan/layer_stage.hpp"
 
+#include "planner/plan/boundary_fibre_stats.hpp"
 #include "planner/plan/fibre_budget.hpp"
 
 #include "planner/fibre/curve_spacing.hpp"
@@ -33,7 +34,8 @@ struct LayerWork {
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
-    std::optional<BudgetFit> budget;  // when planner.fibre_budget applied to the layer
+    std::vector<BoundaryFibreStats> boundaries;  // per boundary_fibres region
+    std::optional<BudgetFit> budget;             // when planner.fibre_budget applied to the layer
 };
 
 double fibre_length(const std::vector<Toolpath>& paths) {
@@ -56,10 +58,17 @@ double budget_target_mm(const FibreBudget& budget, const LayerOutline& outline, 
     return 0;
 }
 
-// The part's boundary faces in the job's boundary_fibres regions, on the bed.
-SelectedFaces boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
-                                       const TetMesh& placed) {
-    if (job.boundary_fibre_regions.empty() || job.planner.strategy != Strategy::field) return {};
+// The part's boundary faces in the job's boundary_fibres regions, on the bed: all of them, and
+// each region's own (for the report).
+struct BoundaryFibreSelection {
+    SelectedFaces all;
+    std::vector<SelectedFaces> by_region;  // job.boundary_fibre_regions' order
+};
+
+BoundaryFibreSelection boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
+                                                const TetMesh& placed) {
+    BoundaryFibreSelection out;
+    if (job.boundary_fibre_regions.empty() || job.planner.strategy != Strategy::field) return out;
     const std::vector<BoundaryTriangle> boundary = boundary_triangles(model.mesh);
     std::vector<BoundaryTriangle> chosen;
     for (const std::string& name : job.boundary_fibre_regions) {
@@ -68,9 +77,11 @@ SelectedFaces boundary_fibre_selection(const JobSpec& job, const VolumeModel& mo
             throw std::invalid_argument("region '" + name +
                                         "' (boundary_fibres) selects no boundary triangle of the "
                                         "mesh");
+        out.by_region.push_back(selected_faces(placed, t));
         chosen.insert(chosen.end(), t.begin(), t.end());
     }
-    return selected_faces(placed, chosen);
+    out.all = selected_faces(placed, chosen);
+    return out;
 }
 
 }  // namespace
@@ -105,7 +116,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
     fibre.crowded_fraction = job.planner.crowded_fraction;
     fibre.cutter_distance_mm = options.cutter_distance_mm;
-    const SelectedFaces boundary_fibre_faces = boundary_fibre_selection(job, field.model, placed);
+    const BoundaryFibreSelection boundary_fibre_faces =
+        boundary_fibre_selection(job, field.model, placed);
 
     std::vector<LayerWork> work(schedule.size());
     std::mutex progress_mutex;  // the sink is called by one task at a time
@@ -141,7 +153,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.dropped_short = r.dropped_short;
             w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
-            const auto edges = selected_outline_edges(out.sections[i], boundary_fibre_faces);
+            const auto edges = selected_outline_edges(out.sections[i], boundary_fibre_faces.all);
             const auto fibre_at = [&](double density_scale) {
                 FibreLayerOptions o = fibre;
                 o.density_scale = density_scale;
@@ -167,6 +179,10 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.sigma = std::move(r.field.sigma_f);
             w.warnings = std::move(r.warnings);
             w.timings = r.timings;
+            for (const SelectedFaces& faces : boundary_fibre_faces.by_region)
+                w.boundaries.push_back(boundary_fibre_stats(
+                    out.sections[i], selected_outline_edges(out.sections[i], faces), w.layer.paths,
+                    fibre.spacing_mm));
         }
         if (s.head == Head::ccf)
             w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
@@ -178,6 +194,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     (options.executor ? *options.executor : serial).for_each(schedule.size(), plan_layer);
 
     LayerStageStats& st = out.stats;
+    for (std::size_t b = 0; b < boundary_fibre_faces.by_region.size(); ++b)
+        st.boundaries.emplace_back(job.boundary_fibre_regions[b], BoundaryFibreStats{});
     double min_length = 0;
     for (LayerWork& w : work) {
         const bool ccf = w.layer.head == Head::ccf;
@@ -221,6 +239,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         st.mean_extraction += w.timings.extraction;
         st.mean_connection += w.timings.connection;
         st.quality += w.quality;
+        for (std::size_t b = 0; b < w.boundaries.size(); ++b)
+            st.boundaries[b].second += w.boundaries[b];
         out.layers.push_back(std::move(w.layer));
         out.sigma.push_back(std::move(w.sigma));
         out.warnings.insert(out.warnings.end(), w.warnings.begin(), w.warnings.end());

@@ -6,12 +6,14 @@
 #include "planner/fibre/layer_field.hpp"
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"
+#include "planner/plan/boundary_fibre_stats.hpp"
 #include "planner/plan/fibre_quality.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/progress.hpp"
 #include "planner/toolpaths/toolpath.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fibrecell::planner {
@@ -37,6 +39,8 @@ struct LayerStageStats {
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
     double total_s = 0;        // all per-layer work, wall clock
     FibreQualitySums quality;  // over all CCF layers
+    // Per boundary_fibres region, in the job's order (field strategy), over all CCF layers.
+    std::vector<std::pair<std::string, BoundaryFibreStats>> boundaries;
 };
 
 struct LayerStageResult {

@@ -196,7 +196,8 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
     return out;
 }
 
-std::string preview_index_html(const std::vector<ToolpathLayer>& layers) {
+std::string preview_index_html(const std::vector<ToolpathLayer>& layers,
+                               const std::vector<PreviewFigure>& figures) {
     std::string out =
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         "<title>fibrecell layer preview</title>\n<style>\n"
@@ -205,6 +206,7 @@ std::string preview_index_html(const std::vector<ToolpathLayer>& layers) {
         "#list li.current{font-weight:bold}\n"
         "#view{max-width:100%;max-height:80vh;border:1px solid #ccc}\n"
         ".pla{color:#1f5fbf}.ccf{color:#d62728}\n"
+        "#figures{display:flex;flex-wrap:wrap;gap:1em}#figures figure{margin:0}\n"
         "</style>\n</head>\n<body>\n<ol id=\"list\" start=\"0\">\n";
     for (const ToolpathLayer& layer : layers) {
         const std::string head(to_string(layer.head));
@@ -218,7 +220,15 @@ std::string preview_index_html(const std::vector<ToolpathLayer>& layers) {
     out += "<img id=\"view\" alt=\"layer preview\"" +
            (layers.empty() ? std::string()
                            : " src=\"" + preview_svg_name(layers.front().index) + "\"") +
-           ">\n</main>\n";
+           ">\n";
+    if (!figures.empty()) {
+        out += "<h2>Analyses</h2>\n<div id=\"figures\">\n";
+        for (const PreviewFigure& f : figures)
+            out += "<figure><img src=\"" + f.file.name + "\" alt=\"" + f.caption +
+                   "\"><figcaption>" + f.caption + "</figcaption></figure>\n";
+        out += "</div>\n";
+    }
+    out += "</main>\n";
     out +=
         "<script>\n"
         "const entries = Array.from(document.querySelectorAll('#list li'));\n"
@@ -243,7 +253,8 @@ std::string preview_index_html(const std::vector<ToolpathLayer>& layers) {
 std::vector<PreviewFile> preview_files(const std::vector<ToolpathLayer>& layers,
                                        const std::vector<LayerOutline>& outlines,
                                        const std::vector<const TriangleScalars*>& backgrounds,
-                                       PreviewOptions options) {
+                                       PreviewOptions options,
+                                       const std::vector<PreviewFigure>& figures) {
     if (!outlines.empty() && outlines.size() != layers.size())
         throw std::invalid_argument("preview: " + std::to_string(outlines.size()) +
                                     " outlines for " + std::to_string(layers.size()) + " layers");
@@ -258,12 +269,13 @@ std::vector<PreviewFile> preview_files(const std::vector<ToolpathLayer>& layers,
         if (!view.isEmpty()) options.view_mm = view;
     }
     std::vector<PreviewFile> files;
-    files.reserve(layers.size() + 1);
+    files.reserve(layers.size() + figures.size() + 1);
     for (std::size_t i = 0; i < layers.size(); ++i)
         files.push_back({preview_svg_name(layers[i].index),
                          layer_svg(layers[i], outlines.empty() ? nullptr : &outlines[i],
                                    backgrounds.empty() ? nullptr : backgrounds[i], options)});
-    files.push_back({"index.html", preview_index_html(layers)});
+    for (const PreviewFigure& f : figures) files.push_back(f.file);
+    files.push_back({"index.html", preview_index_html(layers, figures)});
     return files;
 }
 

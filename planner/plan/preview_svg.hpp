@@ -40,22 +40,30 @@ std::string preview_svg_name(int layer_index);
 std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
                       const TriangleScalars* background, const PreviewOptions& options = {});
 
-// index.html: a slider and a list with one entry per layer (index, z, head, path count), showing
-// the layer SVGs as images. Self-contained: no external resources.
-std::string preview_index_html(const std::vector<ToolpathLayer>& layers);
-
 struct PreviewFile {
     std::string name;  // inside preview/: "layer_0007.svg", "index.html"
     std::string text;
 };
 
-// preview/ as files: layer_NNNN.svg for every layer and index.html. All layers share one view
+// A chart beside the layers (planner/plan/analysis_svg.hpp), shown under them with its caption.
+struct PreviewFigure {
+    PreviewFile file;  // an SVG: "neighbour_dots.svg"
+    std::string caption;
+};
+
+// index.html: a slider and a list with one entry per layer (index, z, head, path count), showing
+// the layer SVGs as images, then the figures. Self-contained: no external resources.
+std::string preview_index_html(const std::vector<ToolpathLayer>& layers,
+                               const std::vector<PreviewFigure>& figures = {});
+
+// preview/ as files: layer_NNNN.svg for every layer, the figures and index.html. All layers share one view
 // (the union of their extents) so that the slider does not jump. `outlines` and `backgrounds` are
 // empty or one per layer (a null background: none). Throws std::invalid_argument on mismatched
 // sizes.
 std::vector<PreviewFile> preview_files(const std::vector<ToolpathLayer>& layers,
                                        const std::vector<LayerOutline>& outlines,
                                        const std::vector<const TriangleScalars*>& backgrounds,
-                                       PreviewOptions options = {});
+                                       PreviewOptions options = {},
+                                       const std::vector<PreviewFigure>& figures = {});
 
 }  // namespace fibrecell::planner

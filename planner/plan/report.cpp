@@ -15,6 +15,11 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
     const double sigma_max =
         f.sigma_e.empty() ? 0.0 : *std::max_element(f.sigma_e.begin(), f.sigma_e.end());
 
+    const DotHistogram& dots = r.neighbour_dots;
+    json dot_fractions = json::array();
+    for (std::uint64_t c : dots.counts)
+        dot_fractions.push_back(dots.pairs ? static_cast<double>(c) / dots.pairs : 0.0);
+
     json report = {
         {"format", "fibrecell.report/1"},
         {"job", job.name},
@@ -30,6 +35,8 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
           {"rule_first_principal", by_rule[0]},
           {"rule_second_principal", by_rule[1]},
           {"rule_no_tension", by_rule[2]},
+          {"mst_reorientation", job.planner.mst_reorientation},
+          {"incompatibility_removal", job.planner.incompatibility_removal},
           {"mst_components", r.mst.components},
           {"mst_flipped", r.mst.flipped},
           {"incompatibility_rule", to_string(job.planner.incompatibility_rule)},
@@ -39,7 +46,15 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
           {"v_undefined_fraction_by_rule",
            {{"all", r.removed_fraction_by_rule[0]},
             {"any", r.removed_fraction_by_rule[1]},
-            {"majority", r.removed_fraction_by_rule[2]}}}}},
+            {"majority", r.removed_fraction_by_rule[2]}}},
+          // The paper's Fig. 8, over the pairs Eq. 2 judges.
+          {"neighbour_dots",
+           {{"pairs", dots.pairs},
+            {"bin_width", 2.0 / DotHistogram::bin_count},
+            {"from", -1.0},
+            {"fraction", dot_fractions},
+            {"at_most_eta_fraction",
+             dots.pairs ? static_cast<double>(dots.at_most_eta) / dots.pairs : 0.0}}}}},
         {"timings_s",
          {{"read", r.timings.read},
           {"fea", r.timings.fea},
@@ -75,6 +90,16 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
                                      {"layers", s.budget.layers},
                                      {"layers_met", s.budget.layers_met},
                                      {"worst_error", s.budget.worst_error}};
+    for (const auto& [name, b] : s.boundaries)
+        report["fibre"]["boundaries"][name] = {
+            {"edge_m", b.edge_mm / 1000.0},
+            {"coverage", b.coverage()},
+            {"rings", b.rings},
+            {"ring_length_m", b.ring_mm / 1000.0},
+            {"ring_distance_mm",
+             {{"p5", b.ring_distance_quantile(0.05)},
+              {"median", b.ring_distance_quantile(0.5)},
+              {"p95", b.ring_distance_quantile(0.95)}}}};
     report["pla"] = {{"length_m", s.pla_length_mm / 1000.0}};
     report["timings_s"]["layers"] = s.total_s;
     report["timings_s"]["per_layer_mean"] = {{"vector_field", s.mean_vector_field},
@@ -82,8 +107,23 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
                                              {"extraction", s.mean_extraction},
                                              {"connection", s.mean_connection}};
     report["quality"] = {{"alignment_weighted_cos", s.quality.alignment()},
-                         {"density_sigma_p_correlation", s.quality.density_correlation()}};
+                         {"density_sigma_p_correlation", s.quality.density_correlation()},
+                         {"turning_deg_per_m", s.quality.turning_deg_per_m()}};
     report["warnings"] = layers.warnings;
+}
+
+void add_sweep_report(nlohmann::json& report, const ParameterSweep& sweep) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const SweepPoint& p : sweep.points)
+        points.push_back({{"value", p.value},
+                          {"fibre_length_m", p.fibre_length_mm / 1000.0},
+                          {"fibre_paths", p.fibre_paths},
+                          {"alignment_weighted_cos", p.alignment},
+                          {"density_sigma_p_correlation", p.density_correlation},
+                          {"turning_deg_per_m", p.turning_deg_per_m},
+                          {"min_spacing_mm", p.min_spacing_mm},
+                          {"seconds", p.seconds}});
+    report["sweep"] = {{"parameter", sweep.parameter}, {"points", points}};
 }
 
 }  // namespace fibrecell::planner

@@ -4,6 +4,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
+#include "planner/plan/parameter_sweep.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -16,5 +17,8 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& re
 
 // Adds the layer stage: layers.*, fibre.*, pla.*, timings_s.layers and timings_s.per_layer_mean.
 void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& layers);
+
+// Adds sweep.parameter and sweep.points (one per value, in the sweep's order).
+void add_sweep_report(nlohmann::json& report, const ParameterSweep& sweep);
 
 }  // namespace fibrecell::planner

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <set>
 
 using namespace fibrecell::planner;
@@ -99,4 +101,37 @@ TEST(Incompatibility, MajorityRuleNeedsMoreThanHalfTheNeighboursToDisagree) {
     c.v[around[turned]] = Eigen::Vector3d::UnitY();
     c.v[around[turned + 1]] = Eigen::Vector3d::UnitY();
     EXPECT_FALSE(undefined(compatible_directions(c.v, c.around, rule)).contains(odd));
+}
+
+TEST(Incompatibility, HistogramCountsEveryNeighbourPairOnceInItsBin) {
+    Case c;
+    // A field turning smoothly about z, plus one element at 90 degrees to its own neighbours.
+    for (std::size_t e = 0; e < c.v.size(); ++e) {
+        const double a = 0.2 * static_cast<double>(e % 7);
+        c.v[e] = Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+    }
+    c.v[40] = Eigen::Vector3d::UnitZ();
+    const NeighbourAgreement a = neighbour_agreement(c.v, c.around, 0.5);
+
+    // Brute force over the ordered pairs, each unordered pair seen twice.
+    std::array<std::uint64_t, DotHistogram::bin_count> twice{};
+    std::uint64_t ordered = 0, ordered_at_most = 0;
+    for (int e = 0; e < static_cast<int>(c.v.size()); ++e) {
+        std::uint32_t disagreeing = 0;
+        for (int n : c.around.neighbours(e)) {
+            const double dot = c.v[e].dot(c.v[n]);
+            const int bin = std::min(DotHistogram::bin_count - 1,
+                                     static_cast<int>(std::floor((dot + 1.0) * 10.0)));
+            ++twice[static_cast<std::size_t>(bin)];
+            ++ordered;
+            if (dot <= 0.5) ++ordered_at_most, ++disagreeing;
+        }
+        EXPECT_EQ(a.disagreeing[e], disagreeing) << "element " << e;
+    }
+    EXPECT_EQ(2 * a.dots.pairs, ordered);
+    EXPECT_EQ(2 * a.dots.at_most_eta, ordered_at_most);
+    for (int b = 0; b < DotHistogram::bin_count; ++b)
+        EXPECT_EQ(2 * a.dots.counts[b], twice[b]) << "bin from " << a.dots.lower_edge(b);
+    // The odd element's pairs are all at dot 0: the bin [0, 0.1).
+    EXPECT_GE(a.dots.counts[10], c.around.neighbours(40).size());
 }

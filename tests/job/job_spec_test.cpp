@@ -133,6 +133,19 @@ TEST_F(JobSpecTest, FibreBudgetForms) {
             << bad;
 }
 
+TEST_F(JobSpecTest, FieldProcessingStepsCanBeSwitchedOffForTheAblation) {
+    const JobSpec defaults = parse(kMinimal);
+    EXPECT_TRUE(defaults.planner.mst_reorientation);
+    EXPECT_TRUE(defaults.planner.incompatibility_removal);
+    const JobSpec off = parse(std::string(kMinimal) +
+                              "planner:\n  mst_reorientation: false\n  incompatibility_removal: "
+                              "false\n");
+    EXPECT_FALSE(off.planner.mst_reorientation);
+    EXPECT_FALSE(off.planner.incompatibility_removal);
+    EXPECT_THAT(error(std::string(kMinimal) + "planner:\n  mst_reorientation: sometimes\n"),
+                HasSubstr("planner.mst_reorientation: must be"));
+}
+
 TEST_F(JobSpecTest, ErrorsNameTheKey) {
     EXPECT_THAT(error("model:\n  mesh: part.msh\n"), HasSubstr("name: is required"));
     EXPECT_THAT(error(std::string(kMinimal) + "planner:\n  mu: -1\n"),

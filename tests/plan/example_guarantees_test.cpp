@@ -313,6 +313,14 @@ TEST(ExampleGuarantees, Loop) {
     EXPECT_GT(s.fibre_joins, 60);
     EXPECT_GT(s.quality.alignment(), 0.99);
     EXPECT_GT(s.quality.density_correlation(), 0.7);
+    // Both boundaries keep their ring at 1.5W in every CCF layer, as the report says.
+    ASSERT_EQ(s.boundaries.size(), 2u);
+    for (const auto& [name, b] : s.boundaries) {
+        EXPECT_EQ(b.rings, 13) << name;
+        EXPECT_GT(b.coverage(), 0.95) << name;
+        EXPECT_NEAR(b.ring_distance_quantile(0.5), 1.5, 0.1) << name;
+        EXPECT_GT(b.ring_distance_quantile(0.05), 1.4) << name;
+    }
     // Short of the 60% the toolpaths issue asks for (38% per layer; the paper's method without
     // crowding lays 26%).
     EXPECT_GE(min_layer_ratio(both), 0.35);

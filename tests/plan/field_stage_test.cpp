@@ -5,6 +5,7 @@
 #include "planner/io/read_model.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/job/job_spec.hpp"
+#include "planner/mesh/adjacency.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,8 +27,9 @@ namespace {
 class FieldStageTest : public ::testing::Test {
   protected:
     // A 20 x 10 x 2 mm bar in uniaxial tension along x, except a block in pure compression
-    // (rule 3) at x < 4; eigen-solver signs are whatever they are.
-    std::string write_bar() {
+    // (rule 3) at x < 4; eigen-solver signs are whatever they are. With `odd`, one tet in the
+    // middle is pulled along y instead (odd_), against all its neighbours.
+    std::string write_bar(bool odd = false) {
         mesh_ = structured_tet_mesh({.size = {20, 10, 2}, .cells = {10, 5, 1}});
         for (const Tet& t : mesh_.tets) {
             const double x = (mesh_.vertices[t[0]] + mesh_.vertices[t[1]] + mesh_.vertices[t[2]] +
@@ -35,6 +38,10 @@ class FieldStageTest : public ::testing::Test {
                              4;
             StressTensor s = StressTensor::Zero();
             s(0, 0) = x < 4 ? -50.0 : 50.0;
+            if (odd && odd_ < 0 && x > 10) {
+                odd_ = static_cast<int>(stress_.size());
+                s(0, 0) = 0, s(1, 1) = 50.0;
+            }
             stress_.push_back(s);
         }
         const std::string path = (dir_ / "bar.vtk").string();
@@ -49,6 +56,7 @@ class FieldStageTest : public ::testing::Test {
     fibrecell::test::TempDir dir_{"field"};
     TetMesh mesh_;
     std::vector<StressTensor> stress_;
+    int odd_ = -1;
 };
 
 }  // namespace
@@ -56,7 +64,8 @@ class FieldStageTest : public ::testing::Test {
 TEST_F(FieldStageTest, UniaxialBarGivesAConsistentFieldAlongX) {
     write_bar();
     write_job();
-    const FieldStageResult r = fibrecell::test::field_stage_of(load_job_file((dir_ / "bar.job.yaml").string()));
+    const FieldStageResult r =
+        fibrecell::test::field_stage_of(load_job_file((dir_ / "bar.job.yaml").string()));
     ASSERT_EQ(r.field.v_e.size(), mesh_.tet_count());
     EXPECT_FALSE(r.fea);
     EXPECT_EQ(r.mst.components, 1);
@@ -74,6 +83,36 @@ TEST_F(FieldStageTest, UniaxialBarGivesAConsistentFieldAlongX) {
     }
     EXPECT_EQ(compressed, 2u * 5 * 6);  // the 2 x 5 cells left of x = 4
     EXPECT_EQ(r.removed, 0u);
+}
+
+TEST_F(FieldStageTest, FieldProcessingCanBeSwitchedOffForTheAblation) {
+    write_bar(/*odd=*/true);
+    ASSERT_GE(odd_, 0);
+    const auto plan = [&](const std::string& planner) {
+        write_job(planner);
+        return fibrecell::test::field_stage_of(load_job_file((dir_ / "bar.job.yaml").string()));
+    };
+    // As the paper does it: one tree, the odd element's direction undefined, and the histogram
+    // puts exactly its pairs (at dot 0) at or below eta.
+    const FieldStageResult on = plan("");
+    EXPECT_EQ(on.mst.components, 1);
+    EXPECT_EQ(on.removed, 1u);
+    EXPECT_EQ(on.v_defined[odd_], 0);
+    const auto odd_pairs = vertex_sharing_neighbours(mesh_).neighbours(odd_).size();
+    EXPECT_EQ(on.neighbour_dots.at_most_eta, odd_pairs);
+    EXPECT_EQ(on.neighbour_dots.counts[10], odd_pairs);  // the bin [0, 0.1)
+
+    // Both steps off: no tree, no sign changed, every direction kept.
+    const FieldStageResult off =
+        plan("planner:\n  mst_reorientation: false\n  incompatibility_removal: false\n");
+    EXPECT_EQ(off.mst.components, 0);
+    EXPECT_EQ(off.mst.flipped, 0);
+    EXPECT_TRUE(off.mst.parent.empty());
+    EXPECT_EQ(off.removed, 0u);
+    EXPECT_EQ(std::count(off.v_defined.begin(), off.v_defined.end(), 0), 0);
+    ASSERT_EQ(off.field.v_e.size(), on.field.v_e.size());
+    for (std::size_t e = 0; e < off.field.v_e.size(); ++e)  // the same axes, signs as solved
+        EXPECT_NEAR(std::abs(off.field.v_e[e].dot(on.field.v_e[e])), 1.0, 1e-9) << e;
 }
 
 TEST_F(FieldStageTest, FailsClearlyWithoutStress) {

@@ -5,10 +5,12 @@
 #include "daemon/jobs/thread_pool.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 namespace fibrecell::tools {
@@ -21,11 +23,13 @@ struct PlanArgs {
     std::string out;
     std::string stage = "layers";
     std::string strategy;
-    std::string cell;  // cell YAML; empty: the simulated cell's defaults
+    std::string cell;   // cell YAML; empty: the simulated cell's defaults
+    std::string sweep;  // NAME=V1,V2,...; empty: none
     int threads = 0;
 };
 
-void print_summary(const planner::FieldStageResult& r, const std::string& out) {
+void print_summary(const planner::JobSpec& job, const planner::FieldStageResult& r,
+                   const std::string& out) {
     const auto& t = r.timings;
     const double n = static_cast<double>(r.v_defined.size());
     std::printf("model      %zu tets, %zu vertices\n", r.model.mesh.tet_count(),
@@ -42,6 +46,12 @@ void print_summary(const planner::FieldStageResult& r, const std::string& out) {
         "Eq. 2 read as all/majority/any: %.2f%%/%.2f%%/%.2f%%)\n",
         r.mst.components, r.mst.flipped, r.removed, 100.0 * static_cast<double>(r.removed) / n,
         100.0 * by_rule[0], 100.0 * by_rule[2], 100.0 * by_rule[1]);
+    const auto& dots = r.neighbour_dots;
+    std::printf("neighbours %.2f%% of %llu neighbour pairs disagree (v.v* <= eta = %g)%s%s\n",
+                dots.pairs ? 100.0 * static_cast<double>(dots.at_most_eta) / dots.pairs : 0.0,
+                static_cast<unsigned long long>(dots.pairs), job.planner.eta,
+                job.planner.mst_reorientation ? "" : "; MST re-orientation off",
+                job.planner.incompatibility_removal ? "" : "; incompatibility removal off");
     std::printf(
         "timings    read %.3f s, fea %.3f s, principal %.3f s, mst %.3f s, removal %.3f s, "
         "total %.3f s\n",
@@ -81,15 +91,41 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         s.dropped_short, s.pla_length_mm / 1000.0);
     std::printf(
         "quality    fibres along the tension: stress-weighted |cos| %.3f; density vs "
-        "sigma^p correlation %.3f\n",
-        s.quality.alignment(), s.quality.density_correlation());
+        "sigma^p correlation %.3f; turning %.0f deg/m\n",
+        s.quality.alignment(), s.quality.density_correlation(), s.quality.turning_deg_per_m());
+    for (const auto& [name, b] : s.boundaries) {
+        std::printf("boundary   %s: fibre alongside %.1f%% of its %.2f m; ", name.c_str(),
+                    100.0 * b.coverage(), b.edge_mm / 1000.0);
+        if (b.rings == 0)
+            std::printf("no ring of its own\n");
+        else
+            std::printf(
+                "%d rings (%.2f m) at %.2f mm from the edge (median; 5th percentile %.2f)\n",
+                b.rings, b.ring_mm / 1000.0, b.ring_distance_quantile(0.5),
+                b.ring_distance_quantile(0.05));
+    }
     for (const auto& w : layers.warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("wrote      %s/toolpaths.json, %s/preview/index.html\n", out.c_str(), out.c_str());
+}
+
+void print_sweep_summary(const planner::ParameterSweep& sweep) {
+    const int w = std::max(10, static_cast<int>(sweep.parameter.size()));
+    std::printf("sweep      %-*s fibre [m]  paths  |cos|   corr   turning [deg/m]  time [s]\n", w,
+                sweep.parameter.c_str());
+    for (const auto& p : sweep.points)
+        std::printf("           %-*g %9.2f  %5d  %.3f  %6.3f  %15.0f  %8.2f\n", w, p.value,
+                    p.fibre_length_mm / 1000.0, p.fibre_paths, p.alignment, p.density_correlation,
+                    p.turning_deg_per_m, p.seconds);
 }
 
 int run_plan(const PlanArgs& args) {
     try {
         jobs::PlanRequest request{.job_file = args.job, .out_dir = args.out};
+        if (!args.sweep.empty()) {
+            if (args.stage != "layers")
+                throw std::invalid_argument("--sweep plans layers: it needs --stage layers");
+            request.sweep = planner::parse_sweep(args.sweep);
+        }
         request.last_stage =
             args.stage == "layers" ? jobs::PlanStage::layers : jobs::PlanStage::field;
         if (!args.strategy.empty())
@@ -107,8 +143,9 @@ int run_plan(const PlanArgs& args) {
                     std::fprintf(stderr, "planning %s (%s)\n", job.name.c_str(), args.job.c_str());
                 });
         }
-        print_summary(plan->field, args.out);
+        print_summary(plan->job, plan->field, args.out);
         if (plan->layers) print_layer_summary(*plan->layers, args.out);
+        if (plan->sweep) print_sweep_summary(*plan->sweep);
         if (plan->robot) print_robot_summary(*plan->robot, plan->settings, args.out);
         return 0;
     } catch (const std::exception& e) {
@@ -134,6 +171,10 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--cell", args->cell,
                     "cell YAML of the cell that will print it (default: the simulated cell)")
         ->check(CLI::ExistingFile);
+    cmd->add_option("--sweep", args->sweep,
+                    "plan the layers again at several values of a planner setting, for the "
+                    "report and preview (p=0,0.5,1,2; also sigma_cap_percentile, "
+                    "crowded_fraction)");
     cmd->add_option("--strategy", args->strategy, "override the job's fibre strategy")
         ->check(CLI::IsMember({"field", "contour-zigzag"}));
     cmd->callback([args, &exit_code] { exit_code = run_plan(*args); });
