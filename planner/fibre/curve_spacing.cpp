@@ -37,8 +37,6 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
     return best;
 }
 
-namespace {}  // namespace
-
 double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
                          const std::vector<char>& closed, double along_mm, double cap) {
     // Points every along/32 (W/8 at 4W) find a close pair within one path to W/16.
@@ -117,7 +115,11 @@ double fibre_spacing_mm(const std::vector<Toolpath>& paths, double w) {
         points.push_back(p.points);
         closed.push_back(p.closed);
     }
-    return min_fibre_spacing(points, closed, 4 * w, 3 * w);
+    // Near W first: the grid's cell is the distance it sees, and a small cell visits far fewer
+    // segments. Anything found below that cap is the true minimum; only a layer whose paths are
+    // all farther apart needs the wide search.
+    const double near = min_fibre_spacing(points, closed, 4 * w, 1.25 * w);
+    return near < 1.25 * w ? near : min_fibre_spacing(points, closed, 4 * w, 3 * w);
 }
 
 }  // namespace fibrecell::planner

@@ -18,6 +18,7 @@
 #include "planner/toolpaths/pla_paths.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <mutex>
 #include <optional>
 
@@ -58,30 +59,36 @@ double budget_target_mm(const FibreBudget& budget, const LayerOutline& outline, 
     return 0;
 }
 
-// The part's boundary faces in the job's boundary_fibres regions, on the bed: all of them, and
-// each region's own (for the report).
-struct BoundaryFibreSelection {
-    SelectedFaces all;
-    std::vector<SelectedFaces> by_region;  // job.boundary_fibre_regions' order
-};
-
-BoundaryFibreSelection boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
-                                                const TetMesh& placed) {
-    BoundaryFibreSelection out;
+// The part's boundary faces in each of the job's boundary_fibres regions, on the bed (in the
+// job's order).
+std::vector<SelectedFaces> boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
+                                                    const TetMesh& placed) {
+    std::vector<SelectedFaces> out;
     if (job.boundary_fibre_regions.empty() || job.planner.strategy != Strategy::field) return out;
     const std::vector<BoundaryTriangle> boundary = boundary_triangles(model.mesh);
-    std::vector<BoundaryTriangle> chosen;
     for (const std::string& name : job.boundary_fibre_regions) {
         std::vector<BoundaryTriangle> t = select_triangles(model, boundary, *job.find_region(name));
         if (t.empty())
             throw std::invalid_argument("region '" + name +
                                         "' (boundary_fibres) selects no boundary triangle of the "
                                         "mesh");
-        out.by_region.push_back(selected_faces(placed, t));
-        chosen.insert(chosen.end(), t.begin(), t.end());
+        out.push_back(selected_faces(placed, t));
     }
-    out.all = selected_faces(placed, chosen);
     return out;
+}
+
+// The outline edges of any of the regions (each list ascending, as selected_outline_edges gives
+// them): what one selection of all their faces would give.
+std::vector<std::array<int, 2>> edges_of_any(
+    const std::vector<std::vector<std::array<int, 2>>>& by_region) {
+    std::vector<std::array<int, 2>> all;
+    for (const auto& edges : by_region) {
+        std::vector<std::array<int, 2>> merged;
+        std::set_union(all.begin(), all.end(), edges.begin(), edges.end(),
+                       std::back_inserter(merged));
+        all = std::move(merged);
+    }
+    return all;
 }
 
 }  // namespace
@@ -116,7 +123,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
     fibre.crowded_fraction = job.planner.crowded_fraction;
     fibre.cutter_distance_mm = options.cutter_distance_mm;
-    const BoundaryFibreSelection boundary_fibre_faces =
+    const std::vector<SelectedFaces> boundary_fibre_faces =
         boundary_fibre_selection(job, field.model, placed);
 
     std::vector<LayerWork> work(schedule.size());
@@ -153,7 +160,10 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.dropped_short = r.dropped_short;
             w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
-            const auto edges = selected_outline_edges(out.sections[i], boundary_fibre_faces.all);
+            std::vector<std::vector<std::array<int, 2>>> region_edges;
+            for (const SelectedFaces& faces : boundary_fibre_faces)
+                region_edges.push_back(selected_outline_edges(out.sections[i], faces));
+            const auto edges = edges_of_any(region_edges);
             const auto fibre_at = [&](double density_scale) {
                 FibreLayerOptions o = fibre;
                 o.density_scale = density_scale;
@@ -179,10 +189,9 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.sigma = std::move(r.field.sigma_f);
             w.warnings = std::move(r.warnings);
             w.timings = r.timings;
-            for (const SelectedFaces& faces : boundary_fibre_faces.by_region)
-                w.boundaries.push_back(boundary_fibre_stats(
-                    out.sections[i], selected_outline_edges(out.sections[i], faces), w.layer.paths,
-                    fibre.spacing_mm));
+            for (const auto& edges_of_region : region_edges)
+                w.boundaries.push_back(boundary_fibre_stats(out.sections[i], edges_of_region,
+                                                            w.layer.paths, fibre.spacing_mm));
         }
         if (s.head == Head::ccf)
             w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
@@ -194,7 +203,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     (options.executor ? *options.executor : serial).for_each(schedule.size(), plan_layer);
 
     LayerStageStats& st = out.stats;
-    for (std::size_t b = 0; b < boundary_fibre_faces.by_region.size(); ++b)
+    for (std::size_t b = 0; b < boundary_fibre_faces.size(); ++b)
         st.boundaries.emplace_back(job.boundary_fibre_regions[b], BoundaryFibreStats{});
     double min_length = 0;
     for (LayerWork& w : work) {

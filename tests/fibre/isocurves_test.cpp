@@ -97,6 +97,18 @@ TEST(CurveSpacing, FibreSpacingCountsAPathComingBackNearItself) {
     EXPECT_NEAR(min_fibre_spacing({a, b}, {0, 0}, 4.0, 3.0), 0.8, 1e-12);
 }
 
+// What a layer reports: the same measure, found near W first and farther only when needed.
+TEST(CurveSpacing, LayerSpacingIsExactOnEitherSideOfTheNearSearch) {
+    const auto at = [](double gap) {
+        return std::vector<Toolpath>{{PathRole::fibre, false, {{0, 0}, {10, 0}}},
+                                     {PathRole::fibre, false, {{0, gap}, {10, gap}}}};
+    };
+    for (double gap : {0.7, 1.0, 1.2, 1.3, 2.0, 2.9})
+        EXPECT_NEAR(fibre_spacing_mm(at(gap), 1.0), gap, 1e-12) << gap;
+    EXPECT_NEAR(fibre_spacing_mm(at(5.0), 1.0), 3.0, 1e-12);  // capped at 3W
+    EXPECT_EQ(fibre_spacing_mm({}, 1.0), 0.0);
+}
+
 TEST(AdaptiveIsocurves, UniformTensionGivesStraightFibresSpacedJustOverW) {
     const LayerMesh m = grid_layer(30, 10, 30, 20);
     const std::vector<Eigen::Vector2d> u(m.triangles.size(), Eigen::Vector2d(5.0, 0.0));
