@@ -39,7 +39,9 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
 
 double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
                          const std::vector<char>& closed, double along_mm, double cap) {
-    // Points every along/32 (W/8 at 4W) find a close pair within one path to W/16.
+    // Points every along/32 (W/8 at 4W) find a close pair within one path to W/16. The segments
+    // they are measured to need no such density (the distance to a segment is exact), only to
+    // span at most a grid cell or two: pieces no longer than the cap.
     std::vector<std::vector<Eigen::Vector2d>> paths;
     paths.reserve(given.size());
     for (std::size_t i = 0; i < given.size(); ++i)
@@ -50,7 +52,7 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
         double from_mm, to_mm;  // along the path
     };
     std::vector<Piece> segs;
-    std::vector<std::vector<double>> at(paths.size());  // along-path position of each vertex
+    std::vector<std::vector<double>> at(paths.size());  // along-path position of each point
     std::vector<double> length(paths.size(), 0);
     SegmentGrid grid(cap);
     for (std::size_t i = 0; i < paths.size(); ++i) {
@@ -61,15 +63,21 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
             at[i].push_back(s);
         }
         const bool loop = closed[i] && pts.size() > 2;
-        const std::size_t count = loop ? pts.size() : (pts.empty() ? 0 : pts.size() - 1);
-        for (std::size_t k = 0; k < count; ++k) {
-            const Eigen::Vector2d& a = pts[k];
-            const Eigen::Vector2d& b = pts[(k + 1) % pts.size()];
-            const double from = at[i][k];
-            grid.insert({a, b, static_cast<int>(segs.size())});
-            segs.push_back({static_cast<int>(i), from, from + (b - a).norm()});
-        }
         length[i] = loop ? s + (pts.front() - pts.back()).norm() : s;
+
+        const std::vector<Eigen::Vector2d> coarse = resampled(given[i], closed[i], cap);
+        const bool coarse_loop = closed[i] && coarse.size() > 2;
+        const std::size_t count =
+            coarse_loop ? coarse.size() : (coarse.empty() ? 0 : coarse.size() - 1);
+        double from = 0;
+        for (std::size_t k = 0; k < count; ++k) {
+            const Eigen::Vector2d& a = coarse[k];
+            const Eigen::Vector2d& b = coarse[(k + 1) % coarse.size()];
+            const double to = from + (b - a).norm();
+            grid.insert({a, b, static_cast<int>(segs.size())});
+            segs.push_back({static_cast<int>(i), from, to});
+            from = to;
+        }
     }
     // Distance from p (at `s` along path i) to the part of a segment of the same path that lies
     // more than along_mm from s along the path (around a closed path, the shorter way).
