@@ -71,7 +71,7 @@ TEST_F(JobSpecTest, MinimalJobGetsThePapersDefaults) {
     EXPECT_DOUBLE_EQ(j.planner.fibre_spacing_mm, 1.0);
     EXPECT_EQ(j.planner.smoothing_iterations, 50);
     // Two defaults differ from the paper against stress singularities (docs/job-format.md).
-    EXPECT_DOUBLE_EQ(j.planner.sigma_cap_percentile, 99.0);
+    EXPECT_DOUBLE_EQ(j.planner.sigma_cap_percentile, 90.0);
     EXPECT_DOUBLE_EQ(j.planner.crowded_fraction, 0.05);
     EXPECT_EQ(j.planner.fibre_budget.kind, FibreBudget::Kind::none);
     EXPECT_FALSE(j.planner.cutter_distance_mm);  // the cell's, unless the job says

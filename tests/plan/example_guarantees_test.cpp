@@ -306,9 +306,9 @@ TEST(ExampleGuarantees, Loop) {
     // holes instead of crossing them (more, shorter paths), and joins that would bring a fibre
     // back within W of itself are not made.
     // Where the field converges (round the pins) curves are cut back to W instead of thinning
-    // the whole layer (planner.crowded_fraction; without it 40.1 m).
-    EXPECT_NEAR(s.fibre_length_mm / 1000.0, 55.9, 2.0);
-    EXPECT_NEAR(s.fibre_paths, 283, 15);
+    // the whole layer (planner.crowded_fraction; without it and at the cap of 99, 40.1 m).
+    EXPECT_NEAR(s.fibre_length_mm / 1000.0, 58.0, 2.0);
+    EXPECT_NEAR(s.fibre_paths, 322, 15);
     EXPECT_EQ(s.fibre_boundary_paths, 26);
     EXPECT_GT(s.fibre_joins, 60);
     EXPECT_GT(s.quality.alignment(), 0.99);
@@ -321,9 +321,9 @@ TEST(ExampleGuarantees, Loop) {
         EXPECT_NEAR(b.ring_distance_quantile(0.5), 1.5, 0.1) << name;
         EXPECT_GT(b.ring_distance_quantile(0.05), 1.4) << name;
     }
-    // Short of the 60% the toolpaths issue asks for (38% per layer; the paper's method without
-    // crowding lays 26%).
-    EXPECT_GE(min_layer_ratio(both), 0.35);
+    // Short of the 60% the toolpaths issue asks for (41% per layer; 38% at the cap of 99; the
+    // paper's method without crowding lays 26%).
+    EXPECT_GE(min_layer_ratio(both), 0.38);
 }
 
 // The reference data: real meshes whose sections change with height, with islands and holes.
@@ -334,10 +334,10 @@ TEST(ReferenceGuarantees, Bunnyhead) {
     EXPECT_GT(both.field.stats.ccf_layers, 5);
     EXPECT_GT(both.field.stats.fibre_paths, 0);
     // Far short of the 60% per layer the toolpaths issue asks for: some layers get no fibre
-    // path at all (every isocurve shorter than the cutter distance). 17% overall; the paper's
-    // method without crowding 10%.
+    // path at all (every isocurve shorter than the cutter distance). 28% overall (17% at the
+    // cap of 99); the paper's method without crowding 10%.
     min_layer_ratio(both);
-    EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.15);
+    EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.25);
 }
 
 TEST(ReferenceGuarantees, YogaNew) {
@@ -345,7 +345,8 @@ TEST(ReferenceGuarantees, YogaNew) {
     const Both both = check_both(reference_job("YogaNew"));
     EXPECT_GT(both.field.stats.ccf_layers, 5);
     EXPECT_GT(both.field.stats.fibre_paths, 0);
-    // As for the bunny head: 13% overall (the paper's method without crowding 9%).
+    // As for the bunny head: 19% overall (13% at the cap of 99; the paper's method without
+    // crowding 9%).
     min_layer_ratio(both);
-    EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.12);
+    EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.17);
 }
