@@ -162,9 +162,12 @@ PlannerSpec read_planner(Section s) {
                                                   : IncompatibilityRule::any_neighbour;
     p.mst_reorientation = s.get_or("mst_reorientation", p.mst_reorientation);
     p.incompatibility_removal = s.get_or("incompatibility_removal", p.incompatibility_removal);
-    p.p = s.number("p", p.p, 0, 10);
-    p.sigma_cap_percentile = s.number("sigma_cap_percentile", p.sigma_cap_percentile, 0, 100, true);
-    p.crowded_fraction = s.number("crowded_fraction", p.crowded_fraction, 0, 0.5);
+    p.p = s.number("p", p.p, p_range.min, p_range.max);
+    p.sigma_cap_percentile =
+        s.number("sigma_cap_percentile", p.sigma_cap_percentile, sigma_cap_percentile_range.min,
+                 sigma_cap_percentile_range.max, sigma_cap_percentile_range.min_exclusive);
+    p.crowded_fraction = s.number("crowded_fraction", p.crowded_fraction,
+                                  crowded_fraction_range.min, crowded_fraction_range.max);
     p.fibre_budget = read_fibre_budget(s);
     p.fibre_spacing_mm = s.number("fibre_spacing_mm", p.fibre_spacing_mm, 0.1, 100);
     p.smoothing_iterations = s.integer("smoothing_iterations", p.smoothing_iterations, 0, 10000);

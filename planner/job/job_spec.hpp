@@ -63,6 +63,16 @@ struct FibreBudget {
     double metres_per_layer = 0;  // for metres_per_layer
 };
 
+// The range a planner setting is read with: [min, max], or (min, max] when min_exclusive. Shared
+// by the job file and `fibrecell plan --sweep`, so both refuse the same values.
+struct SettingRange {
+    double min, max;
+    bool min_exclusive = false;
+};
+inline constexpr SettingRange p_range{0, 10};
+inline constexpr SettingRange sigma_cap_percentile_range{0, 100, true};
+inline constexpr SettingRange crowded_fraction_range{0, 0.5};
+
 struct PlannerSpec {
     Strategy strategy = Strategy::field;
     double mu = 3.0;   // rule-2 threshold |sigma_1 / sigma_2| < mu

@@ -10,19 +10,18 @@
 namespace fibrecell::planner {
 namespace {
 
-// Each parameter with its job-file range (planner/job/job_spec.cpp) and where it goes.
+// Each parameter with its job-file range and where it goes.
 struct Sweepable {
     std::string name;
-    double min, max;
-    bool min_exclusive;
+    SettingRange range;
     double PlannerSpec::*field;
 };
 
 const std::vector<Sweepable>& table() {
     static const std::vector<Sweepable> t = {
-        {"p", 0, 10, false, &PlannerSpec::p},
-        {"sigma_cap_percentile", 0, 100, true, &PlannerSpec::sigma_cap_percentile},
-        {"crowded_fraction", 0, 0.5, false, &PlannerSpec::crowded_fraction},
+        {"p", p_range, &PlannerSpec::p},
+        {"sigma_cap_percentile", sigma_cap_percentile_range, &PlannerSpec::sigma_cap_percentile},
+        {"crowded_fraction", crowded_fraction_range, &PlannerSpec::crowded_fraction},
     };
     return t;
 }
@@ -45,24 +44,16 @@ double parse_value(const Sweepable& s, std::string_view text) {
     const double v = std::strtod(t.c_str(), &end);
     if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v))
         throw std::invalid_argument("sweep: '" + t + "' is not a number");
-    const bool low = s.min_exclusive ? v <= s.min : v < s.min;
-    if (low || v > s.max)
+    const SettingRange& r = s.range;
+    const bool low = r.min_exclusive ? v <= r.min : v < r.min;
+    if (low || v > r.max)
         throw std::invalid_argument("sweep: " + s.name + " = " + t + " is outside " +
-                                    (s.min_exclusive ? "(" : "[") + std::to_string(s.min) + ", " +
-                                    std::to_string(s.max) + "]");
+                                    (r.min_exclusive ? "(" : "[") + std::to_string(r.min) + ", " +
+                                    std::to_string(r.max) + "]");
     return v;
 }
 
 }  // namespace
-
-const std::vector<std::string>& sweepable_parameters() {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n;
-        for (const Sweepable& s : table()) n.push_back(s.name);
-        return n;
-    }();
-    return names;
-}
 
 ParameterSweep parse_sweep(std::string_view text) {
     const auto eq = text.find('=');

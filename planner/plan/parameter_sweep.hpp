@@ -28,13 +28,12 @@ struct SweepPoint {
 };
 
 struct ParameterSweep {
-    std::string parameter;  // a planner.* key: p, sigma_cap_percentile, crowded_fraction
+    // A planner.* key the layer stage reads (the field stage runs once): p,
+    // sigma_cap_percentile, crowded_fraction.
+    std::string parameter;
     std::vector<double> values;
     std::vector<SweepPoint> points;  // one per value, once run
 };
-
-// The parameters a sweep can vary: those the layer stage reads (the field stage runs once).
-const std::vector<std::string>& sweepable_parameters();
 
 // "NAME=V1,V2,...": throws std::invalid_argument naming the bad part (an unknown name, a value
 // that is not a number or out of the job file's range, no values, more than 16).
