@@ -12,12 +12,38 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace fibrecell::daemon::jobs {
 namespace {
+
+// The PLA's von Mises stress with the fibre in, on the middle CCF layer (its fibre drawn over
+// it): where the reinforced part is still loaded.
+planner::PreviewFigure reinforced_stress_figure(const planner::LayerStageResult& layers,
+                                                const planner::MechanicsResult& m) {
+    std::vector<std::size_t> ccf;
+    for (std::size_t i = 0; i < layers.layers.size(); ++i)
+        if (layers.layers[i].head == planner::Head::ccf) ccf.push_back(i);
+    if (ccf.empty()) ccf.push_back(layers.layers.size() / 2);
+    const std::size_t i = ccf[ccf.size() / 2];
+    const planner::LayerMesh& section = layers.sections[i];
+    std::vector<double> stress(section.triangles.size());
+    for (std::size_t f = 0; f < stress.size(); ++f)
+        stress[f] = m.prediction.reinforced_von_mises[section.triangle_tet[f]];
+    const planner::TriangleScalars map{&section, stress};
+    char caption[200];
+    std::snprintf(caption, sizeof caption,
+                  "PLA von Mises stress with the fibre, layer %zu (dark: low, yellow: high; "
+                  "peak %.1f MPa, bare %.1f MPa); predicted stiffness %.2fx the bare part's",
+                  i, m.prediction.reinforced.von_mises_peak_mpa,
+                  m.prediction.bare.von_mises_peak_mpa, m.prediction.gain());
+    return {
+        {"reinforced_stress.svg", planner::layer_svg(layers.layers[i], &layers.outlines[i], &map)},
+        caption};
+}
 
 // The paper's analyses beside the layers: Fig. 8 always, Fig. 9 when a sweep ran.
 std::vector<planner::PreviewFigure> analysis_figures(const PlanJobResult& r) {
@@ -31,6 +57,7 @@ std::vector<planner::PreviewFigure> analysis_figures(const PlanJobResult& r) {
     if (r.sweep)
         figures.push_back({{"sweep.svg", planner::sweep_svg(*r.sweep)},
                            "Fibre length against " + r.sweep->parameter + " (paper Fig. 9)"});
+    if (r.mechanics) figures.push_back(reinforced_stress_figure(*r.layers, *r.mechanics));
     return figures;
 }
 
@@ -71,6 +98,7 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
     PlanJobResult r;
     r.job = planner::load_job_file(request.job_file.string());
     if (request.strategy) r.job.planner.strategy = *request.strategy;
+    if (request.fibre_budget) r.job.planner.fibre_budget = *request.fibre_budget;
     r.settings = print::print_settings(r.job, request.cell);
     std::filesystem::create_directories(request.out_dir);
     print::PlanWriter out(request.out_dir);
@@ -97,6 +125,10 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
             r.sweep = request.sweep;
             planner::run_sweep(*r.sweep, r.job, r.field, options, control);
         }
+        if (request.mechanics && planner::wants_mechanics(r.job)) {
+            r.mechanics = planner::run_mechanics_stage(r.job, r.field, *r.layers, control);
+            control.check_cancel();
+        }
     }
     control.report("write", 0.0);
     out.write("field.vtk", planner::field_vtk_text(r.field.model.mesh,
@@ -107,6 +139,7 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
         write_layer_outputs(out, r);
         planner::add_layer_stage_report(r.report, *r.layers);
         if (r.sweep) planner::add_sweep_report(r.report, *r.sweep);
+        if (r.mechanics) planner::add_mechanics_report(r.report, *r.mechanics);
         control.check_cancel();
         control.report("robot", 0.0);
         r.robot = print::plan_robot(r.layers->layers, request.cell.robot, r.settings, r.job.name);

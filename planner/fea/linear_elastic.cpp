@@ -47,7 +47,8 @@ std::vector<Eigen::Vector3d> vertex_displacements(const DofNumbering& dofs,
 
 // Element stresses, and reactions as the internal force K u (sum of V sigma grad N_a) minus
 // the applied force at the fixed vertices.
-void stresses_and_reactions(const TetMesh& mesh, const Lame& lame, const VertexRoles& roles,
+void stresses_and_reactions(const TetMesh& mesh, const Lame& lame,
+                            const std::vector<VoigtStiffness>& added, const VertexRoles& roles,
                             const std::vector<Eigen::Vector3d>& applied, FeaResult& r) {
     std::vector<Eigen::Vector3d> internal(mesh.vertex_count(), Eigen::Vector3d::Zero());
     r.stress.resize(mesh.tet_count());
@@ -57,6 +58,8 @@ void stresses_and_reactions(const TetMesh& mesh, const Lame& lame, const VertexR
         const std::array<Eigen::Vector3d, 4> u = {r.displacement[tet[0]], r.displacement[tet[1]],
                                                   r.displacement[tet[2]], r.displacement[tet[3]]};
         r.stress[t] = tet_stress(g, lame, u);
+        if (!added.empty() && !added[t].isZero())
+            r.stress[t] += stress_tensor(added[t] * voigt_strain(tet_strain(g, u)));
         for (int a = 0; a < 4; ++a) internal[tet[a]] += g.volume * (r.stress[t] * g.grad[a]);
     }
     r.reaction.assign(mesh.vertex_count(), Eigen::Vector3d::Zero());
@@ -91,7 +94,7 @@ FeaResult solve_linear_elastic(const TetMesh& mesh, const LoadCase& load_case,
     control.report(kStage, 0.05);
 
     const DofNumbering dofs = number_free_dofs(roles);
-    const SparseMatrix k = assemble_stiffness(mesh, lame, dofs);
+    const SparseMatrix k = assemble_stiffness(mesh, lame, dofs, load_case.added_stiffness);
     const std::vector<Eigen::Vector3d> applied = nodal_forces(mesh, load_case.loads);
     Eigen::VectorXd rhs(dofs.dof_count());
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
@@ -117,7 +120,7 @@ FeaResult solve_linear_elastic(const TetMesh& mesh, const LoadCase& load_case,
     control.check_cancel();
     control.report(kStage, 0.9);
 
-    stresses_and_reactions(mesh, lame, roles, applied, r);
+    stresses_and_reactions(mesh, lame, load_case.added_stiffness, roles, applied, r);
     r.timings.stress_s = phase.lap();
     r.timings.total_s = total.lap();
     control.report(kStage, 1.0);

@@ -1,6 +1,7 @@
 #pragma once
-// Linear-elastic static FEA on the planner's tet mesh: constant-strain (linear) tets, isotropic
-// material, clamped vertex regions and surface forces. Units are mm, N and MPa throughout.
+// Linear-elastic static FEA on the planner's tet mesh: constant-strain (linear) tets, an isotropic
+// material with an optional anisotropic stiffness added per tet (fibre reinforcement), clamped
+// vertex regions and surface forces. Units are mm, N and MPa throughout.
 
 #include "planner/mesh/boundary.hpp"
 #include "planner/mesh/tet_mesh.hpp"
@@ -31,10 +32,17 @@ struct ForceRegion {
     Eigen::Vector3d total_force_n = Eigen::Vector3d::Zero();  // [N]
 };
 
+// An anisotropic stiffness in Voigt notation [MPa], symmetric: strains ordered
+// (xx, yy, zz, 2yz, 2xz, 2xy) (engineering shears), stresses (xx, yy, zz, yz, xz, xy).
+using VoigtStiffness = Eigen::Matrix<double, 6, 6>;
+
 struct LoadCase {
     Material material;
     std::vector<FixedRegion> supports;
     std::vector<ForceRegion> loads;
+    // Stiffness each tet adds to the material's (planner/mechanics: the fibres in it): empty for
+    // the isotropic material alone, else one per tet.
+    std::vector<VoigtStiffness> added_stiffness;
 };
 
 enum class LinearSolver {
@@ -60,7 +68,7 @@ struct FeaTimings {
 };
 
 struct FeaResult {
-    std::vector<StressTensor> stress;           // #T Cauchy stress per tet [MPa]
+    std::vector<StressTensor> stress;  // #T Cauchy stress per tet [MPa], added stiffness in
     std::vector<Eigen::Vector3d> displacement;  // #V displacement per vertex [mm]
     std::vector<Eigen::Vector3d> reaction;      // #V reaction force [N], nonzero only when fixed
     std::size_t dof_count = 0;                  // unknowns of the reduced system (free DOFs)

@@ -32,6 +32,22 @@ void check_material(const Material& m) {
                        number_text(m.poisson_ratio));
 }
 
+// The added stiffness must be one symmetric, finite matrix per tet, or none. (Positive
+// semi-definiteness is the maker's: an eigen-solve per tet would cost more than the assembly.)
+void check_added_stiffness(const TetMesh& mesh, const std::vector<VoigtStiffness>& added) {
+    if (added.empty()) return;
+    if (added.size() != mesh.tet_count())
+        throw FeaError("the added stiffness has " + std::to_string(added.size()) +
+                       " entries for a mesh of " + std::to_string(mesh.tet_count()) + " tets");
+    for (std::size_t t = 0; t < added.size(); ++t) {
+        const VoigtStiffness& c = added[t];
+        const double scale = c.cwiseAbs().maxCoeff();
+        if (!std::isfinite(scale) || (c - c.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+            throw FeaError("the added stiffness of tet " + std::to_string(t) +
+                           " is not symmetric and finite");
+    }
+}
+
 void check_vertex_index(const TetMesh& mesh, int v, const std::string& what) {
     if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertex_count())
         throw FeaError(what + " refers to vertex " + std::to_string(v) + " but the mesh has " +
@@ -158,6 +174,7 @@ void check_parts_supported(const TetMesh& mesh, const std::vector<std::uint8_t>&
 VertexRoles check_load_case(const TetMesh& mesh, const LoadCase& load_case) {
     check_material(load_case.material);
     check_tets(mesh);
+    check_added_stiffness(mesh, load_case.added_stiffness);
     VertexRoles roles;
     roles.used.assign(mesh.vertex_count(), 0);
     for (const Tet& t : mesh.tets)

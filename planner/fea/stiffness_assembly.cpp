@@ -74,7 +74,8 @@ DofNumbering number_free_dofs(const VertexRoles& roles) {
     return dofs;
 }
 
-SparseMatrix assemble_stiffness(const TetMesh& mesh, const Lame& lame, const DofNumbering& dofs) {
+SparseMatrix assemble_stiffness(const TetMesh& mesh, const Lame& lame, const DofNumbering& dofs,
+                                std::span<const VoigtStiffness> added) {
     const UpperNeighbours n = upper_neighbours(mesh, dofs);
     const int dof_count = dofs.dof_count();
     const std::size_t nonzeros =
@@ -94,19 +95,28 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Lame& lame, const Dof
                                 first);
     };
 
-    for (const Tet& t : mesh.tets) {
+    for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
+        const Tet& t = mesh.tets[e];
         const std::array<int, 4> f = {dofs.free_index[t[0]], dofs.free_index[t[1]],
                                       dofs.free_index[t[2]], dofs.free_index[t[3]]};
         if (f[0] < 0 && f[1] < 0 && f[2] < 0 && f[3] < 0) continue;
         const TetGeometry g = tet_geometry(mesh, t);
+        const VoigtStiffness* extra = nullptr;
+        if (!added.empty() && !added[e].isZero()) extra = &added[e];
+        // K_ab of the tet: isotropic, plus the added stiffness where the tet has one.
+        auto block = [&](int a, int b) {
+            Eigen::Matrix3d kab = stiffness_block(g, lame, a, b);
+            if (extra) kab += stiffness_block(g, *extra, a, b);
+            return kab;
+        };
         for (int a = 0; a < 4; ++a) {
             if (f[a] < 0) continue;
-            const Eigen::Matrix3d kaa = stiffness_block(g, lame, a, a);
+            const Eigen::Matrix3d kaa = block(a, a);
             for (int c = 0; c < 3; ++c)
                 for (int r = c; r < 3; ++r) value[outer[3 * f[a] + c] + (r - c)] += kaa(r, c);
             for (int b = 0; b < 4; ++b) {
-                if (f[b] <= f[a]) continue;  // each pair once, from its lower vertex
-                const Eigen::Matrix3d kba = stiffness_block(g, lame, b, a);  // rows b, cols a
+                if (f[b] <= f[a]) continue;               // each pair once, from its lower vertex
+                const Eigen::Matrix3d kba = block(b, a);  // rows b, cols a
                 const int rank = neighbour_rank(f[a], f[b]);
                 for (int c = 0; c < 3; ++c) {
                     const int p = outer[3 * f[a] + c] + (3 - c) + 3 * rank;

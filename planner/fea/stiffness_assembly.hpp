@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <span>
 #include <vector>
 
 namespace fibrecell::planner {
@@ -23,6 +24,8 @@ struct DofNumbering {
 DofNumbering number_free_dofs(const VertexRoles& roles);
 
 // Lower triangle (row >= column) of the reduced stiffness, (3 free_count)^2 [N/mm], compressed.
-SparseMatrix assemble_stiffness(const TetMesh& mesh, const Lame& lame, const DofNumbering& dofs);
+// `added`: empty, or per tet a stiffness added to the isotropic one (LoadCase::added_stiffness).
+SparseMatrix assemble_stiffness(const TetMesh& mesh, const Lame& lame, const DofNumbering& dofs,
+                                std::span<const VoigtStiffness> added = {});
 
 }  // namespace fibrecell::planner

@@ -33,4 +33,20 @@ Eigen::Matrix3d stiffness_block(const TetGeometry& g, const Lame& lame, int a, i
 StressTensor tet_stress(const TetGeometry& g, const Lame& lame,
                         const std::array<Eigen::Vector3d, 4>& u);
 
+// Small strain (symmetric, tensor shear components) of the four vertex displacements [mm].
+Eigen::Matrix3d tet_strain(const TetGeometry& g, const std::array<Eigen::Vector3d, 4>& u);
+
+using VoigtVector = Eigen::Matrix<double, 6, 1>;  // in the order of VoigtStiffness
+
+// The strain-displacement matrix B_a (6x3) of vertex a: Voigt strain = sum_a B_a u_a.
+Eigen::Matrix<double, 6, 3> strain_displacement(const TetGeometry& g, int a);
+
+// (xx, yy, zz, 2yz, 2xz, 2xy) of a strain tensor, and a Voigt stress back to its tensor.
+VoigtVector voigt_strain(const Eigen::Matrix3d& strain);
+StressTensor stress_tensor(const VoigtVector& stress);
+
+// 3x3 block V B_a^T C B_b of an element stiffness C [N/mm], the same coupling as
+// stiffness_block for an anisotropic material.
+Eigen::Matrix3d stiffness_block(const TetGeometry& g, const VoigtStiffness& c, int a, int b);
+
 }  // namespace fibrecell::planner

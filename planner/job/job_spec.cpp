@@ -195,6 +195,39 @@ void check_region_names(Section& s, std::string_view key, const std::vector<std:
             s.fail(key, "names region '" + n + "', which `regions` does not define");
 }
 
+// A load case whose supports and loads name regions the job defines.
+LoadCaseSpec read_job_load_case(Section lc, const JobSpec& job) {
+    LoadCaseSpec spec = read_load_case(lc);
+    check_region_names(lc, "supports", spec.supports, job);
+    for (const auto& load : spec.loads)
+        if (!job.find_region(load.region))
+            lc.fail("loads", "names region '" + load.region + "', which `regions` does not define");
+    return spec;
+}
+
+AnalysisSpec read_analysis(Section s, const JobSpec& job) {
+    AnalysisSpec a;
+    a.enabled = s.get_or("enabled", a.enabled);
+    a.fibre_modulus_mpa = s.number("fibre_modulus_mpa", a.fibre_modulus_mpa, 0, 2e6, true);
+    a.fibre_volume_fraction =
+        s.number("fibre_volume_fraction", a.fibre_volume_fraction, 0, 1, true);
+    if (s.has("load_case")) {
+        if (job.model.load_case)
+            s.fail("load_case",
+                   "the model has its own load_case, which the analysis uses; give one here only "
+                   "for a model that comes with a stress file");
+        a.load_case = read_job_load_case(s.section("load_case"), job);
+    }
+    const LoadCaseSpec* lc = job.model.load_case ? &*job.model.load_case
+                             : a.load_case       ? &*a.load_case
+                                                 : nullptr;
+    if (lc && a.fibre_modulus_mpa <= lc->youngs_modulus_mpa)
+        s.fail("fibre_modulus_mpa", "must exceed the matrix's Young's modulus (" +
+                                        std::to_string(lc->youngs_modulus_mpa) + " MPa)");
+    s.finish();
+    return a;
+}
+
 }  // namespace
 
 bool LayerScheduleSpec::has_ccf_after(int pla_layer) const {
@@ -205,6 +238,12 @@ bool LayerScheduleSpec::has_ccf_after(int pla_layer) const {
 
 std::string_view to_string(Strategy s) {
     return s == Strategy::field ? "field" : "contour-zigzag";
+}
+
+const LoadCaseSpec* JobSpec::analysis_load_case() const {
+    if (model.load_case) return &*model.load_case;
+    if (analysis.load_case) return &*analysis.load_case;
+    return nullptr;
 }
 
 const Region* JobSpec::find_region(const std::string& region_name) const {
@@ -234,13 +273,7 @@ JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
     if (model.has("load_case")) {
         if (!job.model.stress_path.empty())
             model.fail("load_case", "give either a stress file or a load case, not both");
-        Section lc = model.section("load_case");
-        job.model.load_case = read_load_case(lc);
-        check_region_names(lc, "supports", job.model.load_case->supports, job);
-        for (const auto& load : job.model.load_case->loads)
-            if (!job.find_region(load.region))
-                lc.fail("loads",
-                        "names region '" + load.region + "', which `regions` does not define");
+        job.model.load_case = read_job_load_case(model.section("load_case"), job);
     }
     model.finish();
 
@@ -261,6 +294,8 @@ JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
     job.process.pla = read_head(process.section("pla"), job.process.pla);
     job.process.ccf = read_head(process.section("ccf"), job.process.ccf);
     process.finish();
+
+    job.analysis = read_analysis(root.section("analysis"), job);
 
     root.finish();
     return job;

@@ -113,6 +113,17 @@ struct ProcessSpec {
     HeadProcessSpec ccf{5.0, 100.0, 250.0, 1.2, std::nullopt};
 };
 
+// The predicted stiffness of the printed part (job `analysis`, docs/mechanics.md): the load case
+// solved again with the fibres in it. Defaults are published data (docs/mechanics.md).
+struct AnalysisSpec {
+    bool enabled = true;                  // runs whenever a load case is known
+    double fibre_modulus_mpa = 230000.0;  // E_f along the fibre (T300-class carbon)
+    double fibre_volume_fraction = 0.25;  // of the CCF ribbon's section
+    // For a model that came with its stress file, the load case to predict under; a model with
+    // model.load_case is analysed under that one.
+    std::optional<LoadCaseSpec> load_case;
+};
+
 struct JobSpec {
     std::string name;
     std::string job_file;  // where it was read from (for messages)
@@ -123,7 +134,10 @@ struct JobSpec {
     PlannerSpec planner;
     std::vector<std::string> boundary_fibre_regions;
     ProcessSpec process;
+    AnalysisSpec analysis;
 
+    // The load case the analysis uses: the model's, else analysis.load_case, else none.
+    const LoadCaseSpec* analysis_load_case() const;
     const Region* find_region(const std::string& name) const;
 };
 

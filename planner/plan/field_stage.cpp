@@ -4,6 +4,7 @@
 #include "planner/field/incompatibility.hpp"
 #include "planner/mesh/adjacency.hpp"
 #include "planner/mesh/boundary.hpp"
+#include "planner/plan/fea_load_case.hpp"
 #include "planner/stopwatch.hpp"
 
 #include <spdlog/spdlog.h>
@@ -13,28 +14,6 @@
 
 namespace fibrecell::planner {
 namespace {
-
-// Builds the FEA load case from the job's regions: supports fix the vertices of the boundary
-// triangles inside them, loads spread over the triangles inside them.
-LoadCase make_load_case(const JobSpec& job, const VolumeModel& model,
-                        const std::vector<BoundaryTriangle>& boundary) {
-    const LoadCaseSpec& spec = *job.model.load_case;
-    LoadCase lc;
-    lc.material = {spec.youngs_modulus_mpa, spec.poisson_ratio};
-    auto triangles_of = [&](const std::string& name, const char* use) {
-        const Region* region = job.find_region(name);
-        auto tris = select_triangles(model, boundary, *region);
-        if (tris.empty())
-            throw std::invalid_argument("region '" + name + "' (" + use +
-                                        ") selects no boundary triangle of the mesh");
-        return tris;
-    };
-    for (const auto& name : spec.supports)
-        lc.supports.push_back({name, triangle_vertices(triangles_of(name, "support"))});
-    for (const auto& load : spec.loads)
-        lc.loads.push_back({load.region, triangles_of(load.region, "load"), load.force_n});
-    return lc;
-}
 
 FeaSummary summarise(const FeaResult& r, const LoadCase& lc) {
     FeaSummary s;
@@ -58,10 +37,11 @@ FieldStageResult run_field_stage(const JobSpec& job, VolumeModel model,
     const FaceNeighbours faces = face_neighbours(out.model.mesh);
     if (job.model.load_case) {
         control.report("fea", 0.0);
-        const LoadCase lc =
-            make_load_case(job, out.model, boundary_triangles(out.model.mesh, faces));
-        const FeaResult fea = solve_linear_elastic(out.model.mesh, lc, {}, control);
-        out.model.stress = fea.stress;
+        const LoadCase lc = fea_load_case(job, *job.model.load_case, out.model,
+                                          boundary_triangles(out.model.mesh, faces));
+        FeaResult fea = solve_linear_elastic(out.model.mesh, lc, {}, control);
+        out.model.stress = std::move(fea.stress);
+        out.fea_displacement = std::move(fea.displacement);
         out.fea = summarise(fea, lc);
         out.timings.fea = clock.lap();
         spdlog::info("plan.fea {} unknowns solved with {} in {:.3f} s", fea.dof_count, fea.solver,

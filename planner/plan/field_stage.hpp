@@ -19,7 +19,7 @@ namespace fibrecell::planner {
 // Wall-clock seconds of each step, named as in report.json's timings_s.
 struct FieldStageTimings {
     double read = 0;  // set by whoever read the model
-    double fea = 0;  // 0 when the stress came with the model
+    double fea = 0;   // 0 when the stress came with the model
     double principal = 0;
     double mst_reorientation = 0;
     double incompatible_removal = 0;
@@ -40,11 +40,14 @@ struct FieldStageResult {
     std::vector<std::uint8_t> v_defined;  // 0 where incompatibility removal undefined v_e
     MstReorientationResult mst;           // empty when planner.mst_reorientation is off
     DotHistogram neighbour_dots;          // v_e.v_e* of neighbours, before the removal (Fig. 8)
-    std::size_t removed = 0;  // elements with v_e undefined (0 when the removal is off)
+    std::size_t removed = 0;              // elements with v_e undefined (0 when the removal is off)
     // The fraction each reading of Eq. 2 would undefine, indexed by IncompatibilityRule, so the
     // report can compare them on every part.
     std::array<double, 3> removed_fraction_by_rule = {0, 0, 0};
     std::optional<FeaSummary> fea;
+    // #V the FEA's displacement [mm] (empty when the stress came with the model): the bare part
+    // the mechanics stage compares the reinforced one with.
+    std::vector<Eigen::Vector3d> fea_displacement;
     FieldStageTimings timings;
 };
 

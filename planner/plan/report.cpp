@@ -91,15 +91,14 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
                                      {"layers_met", s.budget.layers_met},
                                      {"worst_error", s.budget.worst_error}};
     for (const auto& [name, b] : s.boundaries)
-        report["fibre"]["boundaries"][name] = {
-            {"edge_m", b.edge_mm / 1000.0},
-            {"coverage", b.coverage()},
-            {"rings", b.rings},
-            {"ring_length_m", b.ring_mm / 1000.0},
-            {"ring_distance_mm",
-             {{"p5", b.ring_distance_quantile(0.05)},
-              {"median", b.ring_distance_quantile(0.5)},
-              {"p95", b.ring_distance_quantile(0.95)}}}};
+        report["fibre"]["boundaries"][name] = {{"edge_m", b.edge_mm / 1000.0},
+                                               {"coverage", b.coverage()},
+                                               {"rings", b.rings},
+                                               {"ring_length_m", b.ring_mm / 1000.0},
+                                               {"ring_distance_mm",
+                                                {{"p5", b.ring_distance_quantile(0.05)},
+                                                 {"median", b.ring_distance_quantile(0.5)},
+                                                 {"p95", b.ring_distance_quantile(0.95)}}}};
     report["pla"] = {{"length_m", s.pla_length_mm / 1000.0}};
     report["timings_s"]["layers"] = s.total_s;
     report["timings_s"]["per_layer_mean"] = {{"vector_field", s.mean_vector_field},
@@ -124,6 +123,38 @@ void add_sweep_report(nlohmann::json& report, const ParameterSweep& sweep) {
                           {"min_spacing_mm", p.min_spacing_mm},
                           {"seconds", p.seconds}});
     report["sweep"] = {{"parameter", sweep.parameter}, {"points", points}};
+}
+
+namespace {
+
+nlohmann::json response_json(const PartResponse& r) {
+    return {
+        {"stiffness_n_per_mm", r.stiffness_n_per_mm},
+        {"displacement_mm", r.displacement_mm},
+        {"matrix_von_mises_mpa", {{"peak", r.von_mises_peak_mpa}, {"p99", r.von_mises_p99_mpa}}},
+        {"fibre_stress_peak_mpa", r.fibre_stress_peak_mpa}};
+}
+
+}  // namespace
+
+void add_mechanics_report(nlohmann::json& report, const MechanicsResult& m) {
+    const StiffnessPrediction& p = m.prediction;
+    report["mechanics"] = {
+        {"model", "smeared 1-D reinforcement (rule of mixtures along the fibre), linear tets"},
+        {"fibre",
+         {{"modulus_mpa", m.fibre.fibre_modulus_mpa},
+          {"ribbon_fibre_fraction", m.fibre.fibre_volume_fraction},
+          {"ribbon_mm", {m.fibre.ribbon_width_mm, m.fibre.ribbon_height_mm}},
+          {"placed_m", m.fibre_placed_mm / 1000.0},
+          {"unplaced_m", m.fibre_unplaced_mm / 1000.0},
+          {"volume_mm3", m.fibre_volume_mm3},
+          {"reinforced_tets", m.reinforced_tets},
+          {"saturated_tets", m.saturated_tets},
+          {"max_tet_fraction", m.max_fibre_fraction}}},
+        {"bare", response_json(p.bare)},
+        {"reinforced", response_json(p.reinforced)},
+        {"stiffness_gain", p.gain()}};
+    report["timings_s"]["mechanics"] = m.seconds;
 }
 
 }  // namespace fibrecell::planner

@@ -4,6 +4,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
+#include "planner/plan/mechanics_stage.hpp"
 #include "planner/plan/parameter_sweep.hpp"
 
 #include <nlohmann/json.hpp>
@@ -20,5 +21,8 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
 
 // Adds sweep.parameter and sweep.points (one per value, in the sweep's order).
 void add_sweep_report(nlohmann::json& report, const ParameterSweep& sweep);
+
+// Adds mechanics.* (the predicted stiffness, bare and reinforced) and timings_s.mechanics.
+void add_mechanics_report(nlohmann::json& report, const MechanicsResult& mechanics);
 
 }  // namespace fibrecell::planner

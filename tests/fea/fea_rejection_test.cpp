@@ -190,3 +190,13 @@ TEST(FeaRejection, LoadOnVertexNoTetUses) {
     EXPECT_THAT(rejection(b.mesh, b.load_case),
                 AllOf(HasSubstr("load region 'push'"), HasSubstr("belongs to no tet")));
 }
+
+TEST(FeaRejection, AnAddedStiffnessMustFitTheMeshAndBeSymmetric) {
+    Block b;
+    b.load_case.added_stiffness.assign(b.mesh.tet_count() - 1, VoigtStiffness::Zero());
+    EXPECT_THAT(rejection(b.mesh, b.load_case), HasSubstr("entries for a mesh of"));
+    b.load_case.added_stiffness.assign(b.mesh.tet_count(), VoigtStiffness::Zero());
+    EXPECT_EQ(rejection(b.mesh, b.load_case), "");
+    b.load_case.added_stiffness[7](0, 1) = 100;  // (1, 0) stays 0
+    EXPECT_THAT(rejection(b.mesh, b.load_case), HasSubstr("tet 7 is not symmetric"));
+}

@@ -184,3 +184,52 @@ TEST_F(JobSpecTest, StressAndLoadCaseAreExclusiveAndRegionsMustExist) {
     bad_support.replace(bad_support.find("[left]"), 6, "[lft]");
     EXPECT_THAT(error(bad_support), HasSubstr("model.load_case.supports: names region 'lft'"));
 }
+
+TEST_F(JobSpecTest, AnalysisDefaultsAndItsLoadCase) {
+    const JobSpec plain = parse(kMinimal);
+    EXPECT_TRUE(plain.analysis.enabled);
+    EXPECT_DOUBLE_EQ(plain.analysis.fibre_modulus_mpa, 230000);
+    EXPECT_DOUBLE_EQ(plain.analysis.fibre_volume_fraction, 0.25);
+    EXPECT_EQ(plain.analysis_load_case(), nullptr);  // no stress to predict under
+
+    const JobSpec loop =
+        parse(std::string(kLoadCase) +
+              "analysis: {fibre_modulus_mpa: 200000, fibre_volume_fraction: 0.3}\n");
+    ASSERT_NE(loop.analysis_load_case(), nullptr);
+    EXPECT_EQ(loop.analysis_load_case(), &*loop.model.load_case);
+    EXPECT_DOUBLE_EQ(loop.analysis.fibre_modulus_mpa, 200000);
+    EXPECT_DOUBLE_EQ(loop.analysis.fibre_volume_fraction, 0.3);
+
+    // A model with its own stress states the load case to predict under.
+    const JobSpec stressed = parse(R"(name: handle
+regions:
+  clamp: {group: clamp}
+  hook: {group: hook}
+model: {mesh: part.msh, stress: part_stress.txt}
+analysis:
+  enabled: false
+  load_case:
+    supports: [clamp]
+    loads: [{region: hook, force_n: [0, 0, -50]}]
+)");
+    ASSERT_NE(stressed.analysis_load_case(), nullptr);
+    EXPECT_EQ(stressed.analysis_load_case()->supports, std::vector<std::string>{"clamp"});
+    EXPECT_FALSE(stressed.analysis.enabled);
+}
+
+TEST_F(JobSpecTest, AnalysisErrorsNameTheKey) {
+    EXPECT_THAT(error(std::string(kLoadCase) + "analysis: {fibre_volume_fraction: 1.5}\n"),
+                HasSubstr("analysis.fibre_volume_fraction"));
+    EXPECT_THAT(error(std::string(kLoadCase) + "analysis: {fibre_modulus_mpa: 2000}\n"),
+                HasSubstr("must exceed the matrix's Young's modulus"));
+    EXPECT_THAT(error(std::string(kLoadCase) +
+                      "analysis: {load_case: {supports: [left], loads: [{region: right, "
+                      "force_n: [1, 0, 0]}]}}\n"),
+                HasSubstr("the model has its own load_case"));
+    EXPECT_THAT(error(std::string(kMinimal) +
+                      "analysis: {load_case: {supports: [nowhere], loads: [{region: nowhere, "
+                      "force_n: [1, 0, 0]}]}}\n"),
+                HasSubstr("names region 'nowhere'"));
+    EXPECT_THAT(error(std::string(kMinimal) + "analysis: {fibre_fraction: 0.3}\n"),
+                HasSubstr("fibre_fraction"));
+}

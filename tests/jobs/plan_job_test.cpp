@@ -169,3 +169,63 @@ TEST_F(PlanJobTest, CommandLineWritesWhatTheLibraryWrites) {
         EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
     EXPECT_EQ(read_file(dir_ / "stderr.txt").rfind("planning bar (", 0), 0u);
 }
+
+// A model with its own stress and the load case the job states: the plan predicts the part's
+// stiffness with and without its fibre (report, preview, CLI), and `fibrecell compare` sets the
+// strategies side by side.
+TEST_F(PlanJobTest, ALoadCaseGivesThePredictedStiffnessInReportPreviewAndCommandLine) {
+    std::ofstream(dir_ / "loaded.job.yaml")
+        << "name: loaded\nmodel:\n  mesh: bar.vtk\n"
+           "regions:\n  x0: {box: {min: [-1, -1, -1], max: [0.001, 7, 1]}}\n"
+           "  x50: {box: {min: [49.999, -1, -1], max: [51, 7, 1]}}\n"
+           "analysis:\n  load_case:\n    supports: [x0]\n"
+           "    loads: [{region: x50, force_n: [144, 0, 0]}]\n";
+    std::vector<std::string> stages;
+    const PlanJobResult r = plan_job({.job_file = dir_ / "loaded.job.yaml", .out_dir = dir_ / "m"},
+                                     {[&](std::string_view stage, double) {
+                                          if (stages.empty() || stages.back() != stage)
+                                              stages.emplace_back(stage);
+                                      },
+                                      nullptr});
+    EXPECT_NE(std::find(stages.begin(), stages.end(), "mechanics"), stages.end());
+    ASSERT_TRUE(r.mechanics);
+    const auto& m = r.report["mechanics"];
+    EXPECT_GT(m["reinforced"]["stiffness_n_per_mm"].get<double>(),
+              m["bare"]["stiffness_n_per_mm"].get<double>());
+    EXPECT_DOUBLE_EQ(m["stiffness_gain"].get<double>(), r.mechanics->prediction.gain());
+    EXPECT_NEAR(m["fibre"]["placed_m"].get<double>(), r.report["fibre"]["length_m"].get<double>(),
+                1e-6);
+    EXPECT_GT(r.report["timings_s"]["mechanics"].get<double>(), 0);
+    EXPECT_TRUE(fs::exists(dir_ / "m" / "preview" / "reinforced_stress.svg"));
+    EXPECT_NE(read_file(dir_ / "m" / "preview" / "index.html").find("reinforced_stress.svg"),
+              std::string::npos);
+
+    // Switched off, or a job with no load case: no prediction.
+    PlanRequest off{.job_file = dir_ / "loaded.job.yaml", .out_dir = dir_ / "off"};
+    off.mechanics = false;
+    EXPECT_FALSE(plan_job(off).report.contains("mechanics"));
+    EXPECT_FALSE(plan_job(request("plain")).report.contains("mechanics"));
+
+    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell compare ") +
+                            (dir_ / "loaded.job.yaml").string() + " --threads 2 --out " +
+                            (dir_ / "cmp").string() + " > " + (dir_ / "cmp.txt").string() + " 2> " +
+                            (dir_ / "cmp.err").string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir_ / "cmp.err");
+    const std::string out = read_file(dir_ / "cmp.txt");
+    for (const char* line : {"stiffness [N/mm]", "contour-zigzag", "vs no fibre", "compare.json"})
+        EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
+    const auto c = nlohmann::json::parse(read_file(dir_ / "cmp" / "compare.json"));
+    EXPECT_EQ(c["format"], "fibrecell.compare/1");
+    EXPECT_DOUBLE_EQ(c["field"]["stiffness_n_per_mm"].get<double>(),
+                     m["reinforced"]["stiffness_n_per_mm"].get<double>());
+    EXPECT_TRUE(fs::exists(dir_ / "cmp" / "contour-zigzag" / "manifest.json"));
+
+    // Without a load case compare says what it needs.
+    const std::string bad = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell compare ") +
+                            (dir_ / "bar.job.yaml").string() + " --out " +
+                            (dir_ / "nocase").string() + " > /dev/null 2> " +
+                            (dir_ / "nocase.err").string();
+    EXPECT_NE(std::system(bad.c_str()), 0);
+    EXPECT_NE(read_file(dir_ / "nocase.err").find("no load case"), std::string::npos)
+        << read_file(dir_ / "nocase.err");
+}

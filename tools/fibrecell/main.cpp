@@ -1,6 +1,7 @@
 // fibrecell: the operator's command-line client: offline planning and the service's verbs.
 
 #include "config/logging.hpp"
+#include "tools/fibrecell/compare_command.hpp"
 #include "tools/fibrecell/plan_command.hpp"
 #include "tools/fibrecell/service_commands.hpp"
 
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
     app.add_flag("-v,--verbose", verbose, "log planner details to stderr");
     int exit_code = 0;
     fibrecell::tools::add_plan_command(app, exit_code);
+    fibrecell::tools::add_compare_command(app, exit_code);
     fibrecell::tools::add_service_commands(app, exit_code);
     app.parse_complete_callback(
         [&] { fibrecell::config::setup_logging(verbose ? "info" : "warn"); });

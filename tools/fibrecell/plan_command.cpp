@@ -118,6 +118,20 @@ void print_sweep_summary(const planner::ParameterSweep& sweep) {
                     p.turning_deg_per_m, p.seconds);
 }
 
+void print_mechanics_summary(const planner::MechanicsResult& m) {
+    const auto& p = m.prediction;
+    std::printf(
+        "stiffness  %.1f N/mm with the fibre, %.1f N/mm without (%.2fx); %.2f m of fibre in %d "
+        "tets (%.0f mm3), predicted in %.2f s\n",
+        p.reinforced.stiffness_n_per_mm, p.bare.stiffness_n_per_mm, p.gain(),
+        m.fibre_placed_mm / 1000.0, m.reinforced_tets, m.fibre_volume_mm3, m.seconds);
+    std::printf(
+        "stress     PLA von Mises peak %.1f MPa, p99 %.1f MPa (bare %.1f / %.1f); fibre peak "
+        "%.0f MPa\n",
+        p.reinforced.von_mises_peak_mpa, p.reinforced.von_mises_p99_mpa, p.bare.von_mises_peak_mpa,
+        p.bare.von_mises_p99_mpa, p.reinforced.fibre_stress_peak_mpa);
+}
+
 int run_plan(const PlanArgs& args) {
     try {
         jobs::PlanRequest request{.job_file = args.job, .out_dir = args.out};
@@ -146,6 +160,7 @@ int run_plan(const PlanArgs& args) {
         print_summary(plan->job, plan->field, args.out);
         if (plan->layers) print_layer_summary(*plan->layers, args.out);
         if (plan->sweep) print_sweep_summary(*plan->sweep);
+        if (plan->mechanics) print_mechanics_summary(*plan->mechanics);
         if (plan->robot) print_robot_summary(*plan->robot, plan->settings, args.out);
         return 0;
     } catch (const std::exception& e) {
