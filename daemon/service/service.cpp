@@ -63,6 +63,11 @@ json plan_summary(const json& report) {
         s["events"] = r.value("events", 0);
         s["duration_s"] = r.value("duration_s", 0.0);
     }
+    if (report.contains("mechanics")) {  // the predicted stiffness (docs/mechanics.md)
+        const json& m = report["mechanics"];
+        s["stiffness_n_per_mm"] = m["reinforced"].value("stiffness_n_per_mm", 0.0);
+        s["stiffness_gain"] = m.value("stiffness_gain", 0.0);
+    }
     return s;
 }
 

@@ -30,7 +30,9 @@ std::string text(const json& j, const char* key, const std::string& fallback = "
     return it != j.end() && it->is_string() ? config::printable(it->get<std::string>()) : fallback;
 }
 
-bool has(const json& j, const char* key) { return j.is_object() && j.contains(key) && !j[key].is_null(); }
+bool has(const json& j, const char* key) {
+    return j.is_object() && j.contains(key) && !j[key].is_null();
+}
 
 std::string name_of(const json& job) {
     const std::string name = text(job, "name");
@@ -102,8 +104,8 @@ std::string jobs_table(const json& jobs) {
                        fixed(100 * number(job["planning"], "fraction"), 0) + "%";
         else if (has(job, "print"))
             progress = "layer " + std::to_string(static_cast<int>(number(job["print"], "layer"))) +
-                       "/" + std::to_string(static_cast<int>(number(job["print"], "layers"))) + " " +
-                       fixed(100 * number(job["print"], "fraction"), 0) + "%";
+                       "/" + std::to_string(static_cast<int>(number(job["print"], "layers"))) +
+                       " " + fixed(100 * number(job["print"], "fraction"), 0) + "%";
         if (has(job, "reason")) progress += (progress.empty() ? "" : "  ") + text(job, "reason");
         std::snprintf(line, sizeof line, "%4d  %-20.20s %-12s %s\n", job.value("id", 0),
                       text(job, "name").c_str(), text(job, "state").c_str(), progress.c_str());
@@ -122,10 +124,15 @@ std::string job_details(const json& job) {
     if (has(job, "plan")) {
         const json& p = job["plan"];
         out << "  plan:     " << static_cast<int>(number(p, "layers")) << " layers, fibre "
-            << fixed(number(p, "fibre_length_m"), 2) << " m, PLA " << fixed(number(p, "pla_length_m"), 2)
-            << " m, " << static_cast<int>(number(p, "events")) << " events, "
+            << fixed(number(p, "fibre_length_m"), 2) << " m, PLA "
+            << fixed(number(p, "pla_length_m"), 2) << " m, "
+            << static_cast<int>(number(p, "events")) << " events, "
             << static_cast<int>(number(p, "modules")) << " RAPID modules, robot time "
             << duration_text(number(p, "duration_s")) << "\n";
+        if (has(p, "stiffness_n_per_mm"))
+            out << "  predicted: " << fixed(number(p, "stiffness_n_per_mm"), 0)
+                << " N/mm along the load, " << fixed(number(p, "stiffness_gain"), 2)
+                << "x the part without fibre\n";
     }
     if (has(job, "print")) {
         const json& p = job["print"];
@@ -149,7 +156,8 @@ std::string cell_details(const json& cell) {
         out << "  board:  " << text(cell["board"], "state") << "  " << temperatures(cell) << "\n";
     if (has(cell, "robot")) {
         const json& r = cell["robot"];
-        out << "  robot:  I/O " << text(r, "io") << (r.value("running", false) ? ", running" : ", not running");
+        out << "  robot:  I/O " << text(r, "io")
+            << (r.value("running", false) ? ", running" : ", not running");
         if (has(r, "event")) out << ", event " << static_cast<long>(number(r, "event"));
         out << "\n";
     }
