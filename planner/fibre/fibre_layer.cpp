@@ -54,10 +54,13 @@ void connect_piece(const FibreRegion& region, std::vector<Polyline> curves,
                         {.max_gap_mm = 2 * w, .clearance_mm = w, .keep_inside = &link_region});
     b.links.insert(b.links.end(), close.begin(), close.end());
     out.joins += b.links.size();
+    for (const Link& l : b.links)
+        out.join_points.push_back(0.5 * (end_point(b.pieces, l.from) + end_point(b.pieces, l.to)));
     std::vector<Polyline> chains = join_pieces(b.pieces, b.links);
     out.rings_joined +=
         attach_short_rings(chains, b.boundary, region.part,
-                           {.spacing_mm = w, .cutter_distance_mm = options.cutter_distance_mm});
+                           {.spacing_mm = w, .cutter_distance_mm = options.cutter_distance_mm},
+                           &out.joined_ring_points);
     for (Polyline& c : chains) paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
     for (Polyline& r : b.boundary)
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});

@@ -77,7 +77,8 @@ std::vector<End> ends_near(const std::vector<Polyline>& paths, const Polyline& r
 }  // namespace
 
 std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polyline>& rings,
-                               const std::vector<Polygon>& part, const RingAttachOptions& options) {
+                               const std::vector<Polygon>& part, const RingAttachOptions& options,
+                               std::vector<Eigen::Vector2d>* joined_at) {
     const double w = options.spacing_mm;
     const double reach = options.reach_mm > 0 ? options.reach_mm : 3 * w;
     std::size_t attached = 0;
@@ -122,6 +123,7 @@ std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polylin
             if (done) break;
         }
         if (done) {
+            if (joined_at) joined_at->push_back(rings[r].points.front());
             rings.erase(rings.begin() + static_cast<std::ptrdiff_t>(r));
             ++attached;
         } else {

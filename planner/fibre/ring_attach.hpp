@@ -22,8 +22,10 @@ struct RingAttachOptions {
 // closed ring opened where the link meets it and stopped 1.5W short of coming round, when the
 // joined fibre keeps W from itself (points more than 4W apart along it), its link keeps W from
 // every other curve and lies in `part`. Joined rings are removed from `rings` and their count
-// returned; the rest are left for the caller's length check.
+// returned (and, when `joined_at` is given, the first point of each, as it was, appended); the
+// rest are left for the caller's length check.
 std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polyline>& rings,
-                               const std::vector<Polygon>& part, const RingAttachOptions& options);
+                               const std::vector<Polygon>& part, const RingAttachOptions& options,
+                               std::vector<Eigen::Vector2d>* joined_at = nullptr);
 
 }  // namespace fibrecell::planner

@@ -28,6 +28,8 @@ BoundaryFibreStats& BoundaryFibreStats::operator+=(const BoundaryFibreStats& o) 
     edge_mm += o.edge_mm;
     covered_mm += o.covered_mm;
     rings += o.rings;
+    rings_joined += o.rings_joined;
+    joins += o.joins;
     ring_mm += o.ring_mm;
     ring_distance_mm.insert(ring_distance_mm.end(), o.ring_distance_mm.begin(),
                             o.ring_distance_mm.end());
@@ -45,7 +47,8 @@ double BoundaryFibreStats::ring_distance_quantile(double q) const {
 
 BoundaryFibreStats boundary_fibre_stats(const LayerMesh& layer,
                                         const std::vector<std::array<int, 2>>& edges,
-                                        const std::vector<Toolpath>& paths, double spacing_mm) {
+                                        const std::vector<Toolpath>& paths, double spacing_mm,
+                                        const FibreJoins& joins) {
     BoundaryFibreStats out;
     if (edges.empty()) return out;
     const double reach = 1.5 * spacing_mm + 0.2;  // a ring's place, with the tolerance
@@ -53,7 +56,7 @@ BoundaryFibreStats boundary_fibre_stats(const LayerMesh& layer,
     SegmentGrid fibre(reach);
     for (std::size_t i = 0; i < paths.size(); ++i)
         fibre.insert_polyline(paths[i].points, paths[i].closed, static_cast<int>(i));
-    SegmentGrid boundary(2 * spacing_mm);
+    SegmentGrid boundary(3 * spacing_mm);
     for (const auto& [a, b] : edges) {
         const Eigen::Vector2d p = layer.vertices[a], q = layer.vertices[b];
         boundary.insert({p, q, 0});
@@ -78,6 +81,10 @@ BoundaryFibreStats boundary_fibre_stats(const LayerMesh& layer,
         out.ring_mm += path_length(path);
         out.ring_distance_mm.insert(out.ring_distance_mm.end(), d.begin(), d.end());
     }
+    for (const Eigen::Vector2d& p : joins.rings_joined)
+        out.rings_joined += nearest(boundary, p) <= 2 * spacing_mm;
+    for (const Eigen::Vector2d& p : joins.links)
+        out.joins += nearest(boundary, p) <= 3 * spacing_mm;
     return out;
 }
 

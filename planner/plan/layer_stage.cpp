@@ -182,6 +182,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 r = fibre_at(1.0);
             }
             w.layer.paths = std::move(r.paths);
+            const FibreJoins joins{r.join_points, r.joined_ring_points};
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.min_spacing = r.min_spacing_mm;
             w.joins = static_cast<int>(r.joins);
@@ -191,7 +192,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.timings = r.timings;
             for (const auto& edges_of_region : region_edges)
                 w.boundaries.push_back(boundary_fibre_stats(out.sections[i], edges_of_region,
-                                                            w.layer.paths, fibre.spacing_mm));
+                                                            w.layer.paths, fibre.spacing_mm, joins));
         }
         if (s.head == Head::ccf)
             w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,

@@ -94,6 +94,8 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
         report["fibre"]["boundaries"][name] = {{"edge_m", b.edge_mm / 1000.0},
                                                {"coverage", b.coverage()},
                                                {"rings", b.rings},
+                                               {"rings_joined", b.rings_joined},
+                                               {"joins", b.joins},
                                                {"ring_length_m", b.ring_mm / 1000.0},
                                                {"ring_distance_mm",
                                                 {{"p5", b.ring_distance_quantile(0.05)},

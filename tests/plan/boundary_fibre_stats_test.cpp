@@ -77,3 +77,19 @@ TEST(BoundaryFibreStats, AStressPathAlongPartOfTheEdgeCoversThatPart) {
     EXPECT_NEAR(s.coverage(), (along + 160 - 8 * (1.5 - past_end)) / 320, tolerance);
     EXPECT_EQ(s.rings, 1);
 }
+
+TEST(BoundaryFibreStats, JoinsAndJoinedRingsCountForTheBoundaryTheyAreBeside) {
+    const Square sq;
+    // Links 1.5 and 2.9 mm from the bottom edge are its joins; one in the middle is not. A joined
+    // ring's point at 1.5 mm belongs here, one 2.5 mm in (beyond 2W) does not.
+    const std::vector<Eigen::Vector2d> links = {{10, 1.5}, {20, 2.9}, {20, 20}};
+    const std::vector<Eigen::Vector2d> rings = {{1.5, 30}, {2.5, 20}};
+    const BoundaryFibreStats s =
+        boundary_fibre_stats(sq.mesh, sq.edges, {ring_at(1.5)}, 1.0, {links, rings});
+    EXPECT_EQ(s.joins, 2);
+    EXPECT_EQ(s.rings_joined, 1);
+    BoundaryFibreStats sum = s;
+    sum += s;
+    EXPECT_EQ(sum.joins, 4);
+    EXPECT_EQ(sum.rings_joined, 2);
+}

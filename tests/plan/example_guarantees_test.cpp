@@ -320,7 +320,12 @@ TEST(ExampleGuarantees, Loop) {
         EXPECT_GT(b.coverage(), 0.95) << name;
         EXPECT_NEAR(b.ring_distance_quantile(0.5), 1.5, 0.1) << name;
         EXPECT_GT(b.ring_distance_quantile(0.05), 1.4) << name;
+        // Curves end on both: the connection joins there (a link counts for one boundary or
+        // none), and no ring is short enough to need joining.
+        EXPECT_GT(b.joins, 13) << name;
+        EXPECT_EQ(b.rings_joined, 0) << name;
     }
+    EXPECT_LE(s.boundaries[0].second.joins + s.boundaries[1].second.joins, s.fibre_joins);
     // Short of the 60% the toolpaths issue asks for (41% per layer; 38% at the cap of 99; the
     // paper's method without crowding lays 26%).
     EXPECT_GE(min_layer_ratio(both), 0.38);
@@ -338,6 +343,11 @@ TEST(ReferenceGuarantees, Bunnyhead) {
     // cap of 99); the paper's method without crowding 10%.
     min_layer_ratio(both);
     EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.25);
+    // The handle is the only boundary: every short ring joined onto a stress path is its own.
+    ASSERT_EQ(both.field.stats.boundaries.size(), 1u);
+    EXPECT_GT(both.field.stats.fibre_rings_joined, 0);
+    EXPECT_EQ(both.field.stats.boundaries[0].second.rings_joined,
+              both.field.stats.fibre_rings_joined);
 }
 
 TEST(ReferenceGuarantees, YogaNew) {

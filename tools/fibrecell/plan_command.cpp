@@ -97,12 +97,13 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         std::printf("boundary   %s: fibre alongside %.1f%% of its %.2f m; ", name.c_str(),
                     100.0 * b.coverage(), b.edge_mm / 1000.0);
         if (b.rings == 0)
-            std::printf("no ring of its own\n");
+            std::printf("no ring of its own");
         else
             std::printf(
-                "%d rings (%.2f m) at %.2f mm from the edge (median; 5th percentile %.2f)\n",
-                b.rings, b.ring_mm / 1000.0, b.ring_distance_quantile(0.5),
-                b.ring_distance_quantile(0.05));
+                "%d rings (%.2f m) at %.2f mm from the edge (median; 5th percentile %.2f)", b.rings,
+                b.ring_mm / 1000.0, b.ring_distance_quantile(0.5), b.ring_distance_quantile(0.05));
+        std::printf("; %d short rings joined onto stress paths, %d joins\n", b.rings_joined,
+                    b.joins);
     }
     for (const auto& w : layers.warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("wrote      %s/toolpaths.json, %s/preview/index.html\n", out.c_str(), out.c_str());
