@@ -4,6 +4,7 @@
 #include "daemon/jobs/plan_job.hpp"
 #include "daemon/jobs/thread_pool.hpp"
 #include "tools/fibrecell/console_progress.hpp"
+#include "tools/fibrecell/planning_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -131,12 +132,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         "compare", "plan a job with both strategies at the same fibre and predict their stiffness");
     cmd->add_option("job", args->job, "job file (YAML)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--out", args->out, "folder for both plans and compare.json")->required();
-    cmd->add_option("--threads", args->threads,
-                    "worker threads for the layers (default: all cores)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--cell", args->cell,
-                    "cell YAML of the cell that will print it (default: the simulated cell)")
-        ->check(CLI::ExistingFile);
+    add_planning_options(cmd, args->threads, args->cell);
     cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }
 

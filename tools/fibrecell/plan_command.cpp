@@ -4,6 +4,7 @@
 #include "daemon/jobs/plan_job.hpp"
 #include "daemon/jobs/thread_pool.hpp"
 #include "tools/fibrecell/console_progress.hpp"
+#include "tools/fibrecell/planning_options.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -181,12 +182,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--stage", args->stage,
                     "last stage to run: field (3D vector field) or layers (toolpaths; default)")
         ->check(CLI::IsMember({"field", "layers"}));
-    cmd->add_option("--threads", args->threads,
-                    "worker threads for the layers (default: all cores)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--cell", args->cell,
-                    "cell YAML of the cell that will print it (default: the simulated cell)")
-        ->check(CLI::ExistingFile);
+    add_planning_options(cmd, args->threads, args->cell);
     cmd->add_option("--sweep", args->sweep,
                     "plan the layers again at several values of a planner setting, for the "
                     "report and preview (p=0,0.5,1,2; also sigma_cap_percentile, "
