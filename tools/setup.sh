@@ -19,6 +19,8 @@ packages=(
     libmodbus-dev libsystemd-dev
     libssl-dev  # libcrypto MD5 for RWS digest authentication
     libgtest-dev libgmock-dev
+    libsimavr-dev libelf-dev  # gt2560-avr: the GT2560 running real AVR firmware (simavr)
+    gcc-avr avr-libc          # the GT2560 test firmware (tests/firmware)
 )
 
 # shellcheck source=tools/apt-install.sh

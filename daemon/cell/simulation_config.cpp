@@ -9,6 +9,10 @@ SimulationConfig load_simulation_config(config::Section s) {
     c.time_scale = s.number("time_scale", c.time_scale, 1, 1000);
     c.hotend_tau_s = s.number("hotend_tau_s", c.hotend_tau_s, 0, 600, true);
     c.residency_s = s.number("residency_s", c.residency_s, 0, 60);
+    c.heater_power_w = s.number("heater_power_w", c.heater_power_w, 0, 1000, true);
+    c.heater_loss_w_per_k = s.number("heater_loss_w_per_k", c.heater_loss_w_per_k, 0, 100, true);
+    c.heat_capacity_j_per_k = s.number("heat_capacity_j_per_k", c.heat_capacity_j_per_k, 0, 10'000, true);
+    c.ambient_c = s.number("ambient_c", c.ambient_c, -40, 80);
     c.main_module = s.get_or<std::string>("main_module", c.main_module);
     c.external_devices = s.choice("devices", "in_process", {"in_process", "external"}) == "external";
     if (!c.main_module.empty() && !std::filesystem::is_regular_file(c.main_module))

@@ -8,6 +8,10 @@
 //     time_scale: 20        # simulated seconds per real second (1..1000)
 //     hotend_tau_s: 8       # the mock hotends' first-order time constant (simulated s)
 //     residency_s: 2        # M109's residency in the temperature window (simulated s)
+//     heater_power_w: 40    # gt2560-avr's hotends (drivers/sim/avr/hotend_thermal.hpp): the
+//     heater_loss_w_per_k: 0.12        # cartridge at full duty, the loss to the air, the
+//     heat_capacity_j_per_k: 5         # block's heat capacity (time constant C/k = 42 s) and
+//     ambient_c: 25                    # the air; the mock board uses hotend_tau_s instead
 //     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
 //     devices: in_process   # or external: fibrecell-simcell and mock-gt2560 run as their own
 //                           # processes at the addresses of the rws:, robot_io: and extruder: sections
@@ -23,6 +27,10 @@ struct SimulationConfig {
     double time_scale = 20;
     double hotend_tau_s = 8;
     double residency_s = 2;
+    double heater_power_w = 40;
+    double heater_loss_w_per_k = 0.12;
+    double heat_capacity_j_per_k = 5;
+    double ambient_c = 25;
     std::string main_module;
     bool external_devices = false;  // devices: external
     // Not in the YAML: trajectory samples the in-process simulated robot keeps until taken. The

@@ -2,11 +2,10 @@
 
 #include "config/thread_priority.hpp"
 #include "drivers/marlin/marlin_line.hpp"
+#include "drivers/sim/sim_pty.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
-#include <pty.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <array>
@@ -78,6 +77,8 @@ struct Exec {
 }  // namespace
 
 struct MockGt2560::Impl {
+    explicit Impl(MockGt2560Options options) : o(std::move(options)), pty(o.link_path) {}
+
     MockGt2560Options o;
     mutable std::mutex mu;
     mutable std::condition_variable cv;
@@ -85,8 +86,7 @@ struct MockGt2560::Impl {
     std::atomic<bool> stop{false};
     RealClock::time_point t0 = RealClock::now();
 
-    int master = -1;
-    std::string slave_name;
+    SimPty pty;
     bool unplugged = false;
     bool connected = false;
     bool booting = false;
@@ -132,38 +132,18 @@ struct MockGt2560::Impl {
     }
 
     void open_pty() {
-        int slave = -1;
-        char name[128] = {};
-        if (::openpty(&master, &slave, name, nullptr, nullptr) != 0)
-            throw std::system_error(errno, std::generic_category(), "mock-gt2560: openpty");
-        termios t{};
-        ::tcgetattr(slave, &t);
-        ::cfmakeraw(&t);  // no echo of our own output back into the master
-        ::tcsetattr(slave, TCSANOW, &t);
-        ::close(slave);   // the port reads as "closed" (POLLHUP) until the driver opens it
-        ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
-        slave_name = name;
-        if (!o.link_path.empty()) {
-            ::unlink(o.link_path.c_str());
-            if (::symlink(slave_name.c_str(), o.link_path.c_str()) != 0)
-                throw std::system_error(errno, std::generic_category(),
-                                        "mock-gt2560: symlink " + o.link_path);
-        }
+        pty.open();
         unplugged = false;
         connected = false;
     }
 
-    void close_pty() {
-        if (master >= 0) ::close(master);
-        master = -1;
-        if (!o.link_path.empty()) ::unlink(o.link_path.c_str());
-    }
+    void close_pty() { pty.close(); }
 
     void write_raw(const std::string& bytes) {
-        if (master < 0 || !connected) return;
+        if (pty.master() < 0 || !connected) return;
         std::size_t off = 0;
         while (off < bytes.size()) {
-            const ssize_t n = ::write(master, bytes.data() + off, bytes.size() - off);
+            const ssize_t n = ::write(pty.master(), bytes.data() + off, bytes.size() - off);
             if (n <= 0) return;  // host not reading: a real UART would lose it too
             off += static_cast<std::size_t>(n);
         }
@@ -616,7 +596,7 @@ struct MockGt2560::Impl {
             int fd;
             {
                 std::lock_guard lock(mu);
-                fd = unplugged ? -1 : master;
+                fd = unplugged ? -1 : pty.master();
             }
             if (fd < 0) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -632,7 +612,7 @@ struct MockGt2560::Impl {
     // One pass of the firmware loop; returns true while the port is closed (nobody reading).
     bool tick(int fd, short revents, char* buf, std::size_t size) {
         std::lock_guard lock(mu);
-        if (unplugged || master != fd) return false;
+        if (unplugged || pty.master() != fd) return false;
         const double t = now();
         if (!connected && !(revents & POLLHUP)) {
             connected = true;  // the host opened the port: DTR pulses the reset line
@@ -652,8 +632,8 @@ struct MockGt2560::Impl {
     }
 };
 
-MockGt2560::MockGt2560(MockGt2560Options options) : impl_(std::make_unique<Impl>()) {
-    impl_->o = std::move(options);
+MockGt2560::MockGt2560(MockGt2560Options options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {
     impl_->keepalive_s = impl_->o.keepalive_s;
     for (auto& h : impl_->heaters) h.temp_c = impl_->o.ambient_c;
     impl_->open_pty();
@@ -672,7 +652,7 @@ MockGt2560::~MockGt2560() {
 
 std::string MockGt2560::port_path() const {
     std::lock_guard lock(impl_->mu);
-    return impl_->o.link_path.empty() ? impl_->slave_name : impl_->o.link_path;
+    return impl_->pty.port_path();
 }
 
 double MockGt2560::sim_now_s() const { return impl_->now(); }
