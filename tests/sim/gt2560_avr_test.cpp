@@ -359,9 +359,11 @@ TEST_F(Gt2560Avr, AResetRebootsTheMcuButTheHotendStaysHot) {
     EXPECT_GT(status()["hotends"][0]["temp_c"].get<double>(), 190);
 }
 
-TEST_F(Gt2560Avr, LoadsIntelHexToo) {
+TEST_F(Gt2560Avr, LoadsIntelHexTooAndQuitsCleanly) {
     start(firmware_hex);
     EXPECT_TRUE(contains(host->command("M115"), "EXTRUDER_COUNT:2"));
+    board->write_line("quit");
+    EXPECT_EQ(board->wait(10s), 0) << board->read_stderr();  // under ASan: no leak either
 }
 
 TEST_F(Gt2560Avr, ABadFirmwareFileIsRefusedByName) {

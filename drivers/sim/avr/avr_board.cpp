@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -65,19 +66,39 @@ constexpr PinWire pin_wires[] = {
     {'B', 5, BoardPin::d11},     {'H', 4, BoardPin::fan},
 };
 
-elf_firmware_t read_firmware(const std::string& path) {
+// A firmware image as simavr reads it, its buffers freed when it goes.
+struct FirmwareImage {
+    elf_firmware_t f{};
+    ihex_chunk_p chunks = nullptr;
+    FirmwareImage() = default;
+    FirmwareImage(const FirmwareImage&) = delete;
+    FirmwareImage& operator=(const FirmwareImage&) = delete;
+    ~FirmwareImage() {
+        if (chunks) {
+            free_ihex_chunks(chunks);  // 1.6 frees the chunks' data, not their array
+            std::free(chunks);
+            return;  // the flash pointer was one of the chunks'
+        }
+        for (std::uint32_t i = 0; f.symbol && i < f.symbolcount; ++i) std::free(f.symbol[i]);
+        for (void* p : {static_cast<void*>(f.symbol), static_cast<void*>(f.flash),
+                        static_cast<void*>(f.eeprom), static_cast<void*>(f.fuse),
+                        static_cast<void*>(f.lockbits)})
+            std::free(p);
+    }
+};
+
+void read_firmware(const std::string& path, FirmwareImage& image) {
     namespace fs = std::filesystem;
     if (!fs::is_regular_file(path)) throw std::runtime_error("gt2560-avr: no firmware file " + path);
-    elf_firmware_t f{};
+    elf_firmware_t& f = image.f;
     const std::string ext = fs::path(path).extension().string();
     if (ext == ".hex" || ext == ".ihex") {
-        ihex_chunk_p chunks = nullptr;
+        ihex_chunk_p& chunks = image.chunks;
         const int n = read_ihex_chunks(path.c_str(), &chunks);
         if (n <= 0) throw std::runtime_error("gt2560-avr: " + path + " is not an Intel HEX file");
         for (int i = 0; i < n; ++i) {
             if (chunks[i].baseaddr >= AVR_SEGMENT_OFFSET_EEPROM) continue;  // EEPROM left blank
             if (f.flash) throw std::runtime_error("gt2560-avr: " + path + " has several flash chunks");
-            // Kept for the life of the process: simavr copies it into its flash at load.
             f.flash = chunks[i].data;
             f.flashsize = chunks[i].size;
             f.flashbase = chunks[i].baseaddr;
@@ -91,7 +112,13 @@ elf_firmware_t read_firmware(const std::string& path) {
                                  ", the GT2560 has an atmega2560");
     if (f.flashbase + f.flashsize > 256 * 1024)
         throw std::runtime_error("gt2560-avr: " + path + " does not fit the 256 KiB flash");
-    return f;
+}
+
+// simavr 1.6 has no call that frees a core (avr_terminate frees its memories, not the core and
+// its IRQs): a stopped core is kept here, reachable, for the rest of the process.
+std::vector<avr_t*>& retired_cores() {
+    static auto* cores = new std::vector<avr_t*>;  // never destroyed: reachable at exit
+    return *cores;
 }
 
 }  // namespace
@@ -112,6 +139,7 @@ struct AvrBoard::Impl {
     WireFaults to_board, from_board;
     std::ofstream edge_log;
     std::unique_ptr<BoardPins> pins;
+    FirmwareImage image;           // kept while the core runs (it may point at its symbols)
     avr_t* mcu = nullptr;
     std::vector<avr_irq_t*> adc;   // ADC8, ADC9
     avr_irq_t* uart_in = nullptr;
@@ -153,12 +181,12 @@ struct AvrBoard::Impl {
     }
 
     void load() {
-        elf_firmware_t f = read_firmware(o.firmware);
+        read_firmware(o.firmware, image);
         avr_global_logger_set(simavr_log);
         mcu = avr_make_mcu_by_name("atmega2560");
         if (!mcu) throw std::runtime_error("gt2560-avr: this simavr has no atmega2560 core");
         avr_init(mcu);
-        avr_load_firmware(mcu, &f);
+        avr_load_firmware(mcu, &image.f);
         mcu->frequency = o.frequency_hz;
         mcu->vcc = mcu->avcc = mcu->aref = 5000;  // mV
         mcu->sleep = no_sleep;
@@ -417,7 +445,10 @@ AvrBoard::AvrBoard(AvrBoardOptions options) : impl_(std::make_unique<Impl>(std::
 AvrBoard::~AvrBoard() {
     impl_->stop = true;
     if (impl_->thread.joinable()) impl_->thread.join();
-    if (impl_->mcu) avr_terminate(impl_->mcu);
+    if (impl_->mcu) {
+        avr_terminate(impl_->mcu);
+        retired_cores().push_back(impl_->mcu);
+    }
 }
 
 std::string AvrBoard::port_path() const { return impl_->pty.port_path(); }
