@@ -1,8 +1,20 @@
 #include "daemon/cell/simulation_config.hpp"
 
+#include <cstdio>
 #include <filesystem>
+#include <string>
 
 namespace fibrecell::daemon {
+
+namespace {
+
+std::string printable_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+}  // namespace
 
 SimulationConfig load_simulation_config(config::Section s) {
     SimulationConfig c;
@@ -15,6 +27,11 @@ SimulationConfig load_simulation_config(config::Section s) {
     c.ambient_c = s.number("ambient_c", c.ambient_c, -40, 80);
     c.main_module = s.get_or<std::string>("main_module", c.main_module);
     c.external_devices = s.choice("devices", "in_process", {"in_process", "external"}) == "external";
+    c.external_board = s.choice("board", "mock", {"mock", "external"}) == "external";
+    if (c.external_board && c.time_scale != 1)
+        s.fail("board", "an external board runs in real time: set simulation.time_scale to 1 (it is " +
+                            printable_number(c.time_scale) + ")");
+    c.external_board = c.external_board || c.external_devices;
     if (!c.main_module.empty() && !std::filesystem::is_regular_file(c.main_module))
         s.fail("main_module", "no file " + c.main_module);
     s.finish();

@@ -15,6 +15,9 @@
 //     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
 //     devices: in_process   # or external: fibrecell-simcell and mock-gt2560 run as their own
 //                           # processes at the addresses of the rws:, robot_io: and extruder: sections
+//     board: mock           # or external: the robot stays simulated in-process, the board is the
+//                           # one at extruder.link.port (gt2560-avr running a firmware, or a real
+//                           # GT2560); it runs in real time, so time_scale must be 1
 
 #include "config/yaml_section.hpp"
 
@@ -33,6 +36,7 @@ struct SimulationConfig {
     double ambient_c = 25;
     std::string main_module;
     bool external_devices = false;  // devices: external
+    bool external_board = false;    // board: external (also true with devices: external)
     // Not in the YAML: trajectory samples the in-process simulated robot keeps until taken. The
     // service never takes them, so it keeps few; a test that measures along the path keeps all.
     std::size_t trajectory_samples = 10'000;

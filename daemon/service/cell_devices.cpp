@@ -56,9 +56,12 @@ CellDevices::CellDevices(const CellConfig& cell) : cell_(cell), extruder_(cell.e
     if (cell.simulated) time_scale_ = cell.simulation.time_scale;
     if (cell.simulated && !cell.simulation.external_devices) {
         std::filesystem::create_directories(cell.state_dir);
-        mock_board_ = make_mock_board(cell, std::filesystem::path(cell.state_dir) / "ttyGT2560-sim");
+        // With `board: external` the link keeps extruder.link.port: gt2560-avr or a real board.
+        if (!cell.simulation.external_board) {
+            mock_board_ = make_mock_board(cell, std::filesystem::path(cell.state_dir) / "ttyGT2560-sim");
+            board_config.serial.device = mock_board_->port_path();
+        }
         sim_cell_ = make_sim_cell(cell);
-        board_config.serial.device = mock_board_->port_path();
         rws_config.host = "127.0.0.1";
         rws_config.port = sim_cell_->rws_port();
         io_config.host = "127.0.0.1";

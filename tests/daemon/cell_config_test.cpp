@@ -61,3 +61,47 @@ TEST(CellConfig, RwsJobDirMustStayInHome) {
     }
     std::remove(path.c_str());
 }
+
+namespace {
+
+daemon::CellConfig load_text(const std::string& text) {
+    const std::string path = ::testing::TempDir() + "fibrecell-sim-cell.yaml";
+    std::ofstream(path) << text;
+    struct Remove {
+        std::string p;
+        ~Remove() { std::remove(p.c_str()); }
+    } remove{path};
+    return daemon::load_cell_config(path);
+}
+
+}  // namespace
+
+TEST(CellConfig, AnExternalBoardIsPrintedThroughInRealTime) {
+    EXPECT_FALSE(load_text("simulated: true\n").simulation.external_board);
+    const auto c = load_text(
+        "simulated: true\nsimulation: {time_scale: 1, board: external}\n"
+        "extruder: {link: {port: /tmp/ttyGT2560}}\n");
+    EXPECT_TRUE(c.simulation.external_board);
+    EXPECT_FALSE(c.simulation.external_devices);  // the robot stays in-process
+    EXPECT_EQ(c.extruder.link.serial.device, "/tmp/ttyGT2560");
+    // devices: external has the board outside too.
+    EXPECT_TRUE(load_text("simulated: true\nsimulation: {devices: external}\n").simulation.external_board);
+    try {
+        load_text("simulated: true\nsimulation: {time_scale: 20, board: external}\n");
+        FAIL() << "expected an error";
+    } catch (const config::ConfigError& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("simulation.board: an external board runs in real "
+                                                   "time: set simulation.time_scale to 1 (it is 20)"));
+    }
+    EXPECT_THROW(load_text("simulated: true\nsimulation: {board: avr}\n"), config::ConfigError);
+}
+
+TEST(CellConfig, TheBoardSimulatorsHeatersComeFromTheSimulationSection) {
+    const auto c = load_text("simulation: {heater_power_w: 30, heater_loss_w_per_k: 0.1, "
+                             "heat_capacity_j_per_k: 6, ambient_c: 20}\n");
+    EXPECT_DOUBLE_EQ(c.simulation.heater_power_w, 30);
+    EXPECT_DOUBLE_EQ(c.simulation.heater_loss_w_per_k, 0.1);
+    EXPECT_DOUBLE_EQ(c.simulation.heat_capacity_j_per_k, 6);
+    EXPECT_DOUBLE_EQ(c.simulation.ambient_c, 20);
+    EXPECT_THROW(load_text("simulation: {heat_capacity_j_per_k: 0}\n"), config::ConfigError);
+}

@@ -4,7 +4,7 @@
 // millimetres at the feed rate, the cutter and servo pin, real-time pacing, wire faults, a pause,
 // unplugging and an MCU reset. The tool runs as its own process on a real pseudo-terminal; the
 // host side here writes and reads that pty as a driver would.
-#include "tests/support/child_process.hpp"
+#include "tests/support/piped_process.hpp"
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -26,7 +26,7 @@
 #include <unistd.h>
 
 using namespace std::chrono_literals;
-using fibrecell::test::ChildProcess;
+using fibrecell::test::PipedProcess;
 using fibrecell::test::TempDir;
 using Json = nlohmann::json;
 
@@ -156,7 +156,7 @@ class Gt2560Avr : public ::testing::Test {
     void heat_t0() { ASSERT_FALSE(host->command("M109 T0 S200", 30s).empty()) << "M109 timed out"; }
 
     TempDir dir{"gt2560-avr"};
-    std::optional<ChildProcess> board;
+    std::optional<PipedProcess> board;
     std::optional<Host> host;
 };
 
@@ -367,11 +367,11 @@ TEST_F(Gt2560Avr, LoadsIntelHexTooAndQuitsCleanly) {
 }
 
 TEST_F(Gt2560Avr, ABadFirmwareFileIsRefusedByName) {
-    ChildProcess missing(tool, {(dir.path() / "nope.elf").string()});
+    PipedProcess missing(tool, {(dir.path() / "nope.elf").string()});
     EXPECT_EQ(missing.wait(10s), 1);
     EXPECT_NE(missing.read_stderr().find("no firmware file"), std::string::npos);
     std::ofstream(dir.path() / "text.elf") << "not firmware\n";
-    ChildProcess text(tool, {(dir.path() / "text.elf").string()});
+    PipedProcess text(tool, {(dir.path() / "text.elf").string()});
     EXPECT_EQ(text.wait(10s), 1);
     EXPECT_NE(text.read_stderr().find("is not an AVR ELF file"), std::string::npos);
 }

@@ -2,7 +2,7 @@
 // login with the configured user and a Modbus link, and exits cleanly on SIGTERM.
 #include "drivers/abb/modbus/robot_io_link.hpp"
 #include "drivers/abb/rws/rws_client.hpp"
-#include "tests/support/child_process.hpp"
+#include "tests/support/piped_process.hpp"
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -31,9 +31,9 @@ const std::string binary =
     std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell-simcell/fibrecell-simcell";
 
 // The program as a child process.
-class Child : public fibrecell::test::ChildProcess {
+class Child : public fibrecell::test::PipedProcess {
   public:
-    explicit Child(std::vector<std::string> args) : ChildProcess(binary, std::move(args)) {}
+    explicit Child(std::vector<std::string> args) : PipedProcess(binary, std::move(args)) {}
 };
 
 struct Ports {

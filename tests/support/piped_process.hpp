@@ -23,9 +23,9 @@ extern char** environ;
 
 namespace fibrecell::test {
 
-class ChildProcess {
+class PipedProcess {
   public:
-    ChildProcess(const std::string& program, std::vector<std::string> args) {
+    PipedProcess(const std::string& program, std::vector<std::string> args) {
         int in[2], out[2], err[2];
         if (pipe2(in, O_CLOEXEC) != 0 || pipe2(out, O_CLOEXEC) != 0 || pipe2(err, O_CLOEXEC) != 0)
             throw std::runtime_error("pipe");
@@ -48,7 +48,7 @@ class ChildProcess {
         err_ = err[0];
         if (rc != 0) throw std::runtime_error("cannot start " + program);
     }
-    ~ChildProcess() {
+    ~PipedProcess() {
         if (pid_ > 0) {
             kill(pid_, SIGKILL);
             waitpid(pid_, nullptr, 0);
@@ -57,8 +57,8 @@ class ChildProcess {
         close(out_);
         close(err_);
     }
-    ChildProcess(const ChildProcess&) = delete;
-    ChildProcess& operator=(const ChildProcess&) = delete;
+    PipedProcess(const PipedProcess&) = delete;
+    PipedProcess& operator=(const PipedProcess&) = delete;
 
     // One line on the child's stdin.
     void write_line(const std::string& line) {
