@@ -1,6 +1,7 @@
 #include "daemon/cell/cell_config.hpp"
 
 #include "config/yaml_section.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -64,13 +65,11 @@ TEST(CellConfig, RwsJobDirMustStayInHome) {
 
 namespace {
 
+// The text as a cell YAML file of this test's own (CTest runs the tests of a file in parallel).
 daemon::CellConfig load_text(const std::string& text) {
-    const std::string path = ::testing::TempDir() + "fibrecell-sim-cell.yaml";
+    fibrecell::test::TempDir dir("cell-config");
+    const auto path = (dir.path() / "cell.yaml").string();
     std::ofstream(path) << text;
-    struct Remove {
-        std::string p;
-        ~Remove() { std::remove(p.c_str()); }
-    } remove{path};
     return daemon::load_cell_config(path);
 }
 
