@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -75,12 +76,15 @@ BoardCheck check_board(const std::string& plan_dir, const std::string& edge_log,
         }
     }
 
-    std::ifstream in(edge_log);
+    std::ifstream in(edge_log, std::ios::binary);
     if (!in) throw std::runtime_error("board-check: cannot read " + edge_log);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.erase(text.rfind('\n') + 1);  // a last line still being written is not read
+    std::istringstream lines(text);
     Extruder ex[2];
     std::string line;
     std::size_t number = 0;
-    while (std::getline(in, line)) {
+    while (std::getline(lines, line)) {
         ++number;
         std::istringstream fields(line);
         double t = 0;

@@ -39,6 +39,7 @@ struct BoardCheckOptions {
 };
 
 // Throws std::runtime_error naming the file when a file cannot be read or is not what it should be.
+// The edge log may still be growing: a last line without its newline is left out.
 BoardCheck check_board(const std::string& plan_dir, const std::string& edge_log,
                        const BoardCheckOptions& o = {});
 

@@ -362,9 +362,14 @@ struct AvrBoard::Impl {
     }
 
     void run() {
+        auto flushed = Clock::now();
         while (!stop.load()) {
             run_tasks();
             move_bytes();
+            if (edge_log.is_open() && Clock::now() - flushed > std::chrono::milliseconds(200)) {
+                edge_log.flush();  // a reader sees the edges of a fifth of a second ago
+                flushed = Clock::now();
+            }
             if (paused) {
                 if (Clock::now() < paused_until) {
                     std::this_thread::sleep_for(std::chrono::milliseconds(1));
