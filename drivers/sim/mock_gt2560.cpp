@@ -90,6 +90,10 @@ struct MockGt2560::Impl {
     bool unplugged = false;
     bool connected = false;
     bool booting = false;
+    bool powered_up = false;           // the first boot says PowerUp, later ones External Reset
+    double min_extrude_c = 170;        // EXTRUDE_MINTEMP, M302 S
+    bool cold_extrusion_allowed = false;  // M302 P1
+    std::uint64_t cold_refusals = 0;
     double boot_until = 0;
     bool silent = false;
     bool killed = false;
@@ -167,6 +171,8 @@ struct MockGt2560::Impl {
         for (auto& h : heaters) h.target_c = 0;
         last_n = 0;
         autoreport_s = 0;
+        min_extrude_c = o.min_extrude_temp_c;
+        cold_extrusion_allowed = o.min_extrude_temp_c <= 0;
         keepalive_s = o.keepalive_s;
         relative_e = false;
         tool = 0;
@@ -176,12 +182,17 @@ struct MockGt2560::Impl {
         boot_until = t + o.bootloader_s;
     }
 
+    // What stock Marlin 1.1.9 on a GT2560 prints when it starts (docs/marlin-link.md).
     void banner() {
         emit("start");
-        emit("echo: External Reset");
-        emit("Marlin 2.1.2.1");
-        emit("echo: Last Updated: 2023-05-01 | Author: (fibrecell mock GT2560)");
-        emit("echo: Free Memory: 2870  PlannerBufferBytes: 1248");
+        emit(powered_up ? "echo: External Reset" : "echo:PowerUp");
+        powered_up = true;
+        emit("Marlin 1.1.9");
+        emit("echo: Last Updated: 2018-08-01 | Author: (none, default config)");
+        emit("Compiled: Aug  1 2018");
+        emit("echo: Free Memory: 4264  PlannerBufferBytes: 1232");
+        emit("echo:EEPROM version mismatch");
+        emit("echo:Hardcoded Default Settings Loaded");
     }
 
     void kill(const std::string& reason) {
@@ -434,13 +445,18 @@ struct MockGt2560::Impl {
             keepalive_s = param(c, 'S').value_or(keepalive_s);
             finish(e, t);
         } else if (w == "M115") {
-            emit("FIRMWARE_NAME:Marlin 2.1.2.1 (mock GT2560) SOURCE_CODE_URL:github.com/"
-                 "MarlinFirmware/Marlin PROTOCOL_VERSION:1.0 MACHINE_TYPE:GT2560 "
-                 "EXTRUDER_COUNT:2 UUID:00000000-0000-0000-0000-000000000000");
+            emit("FIRMWARE_NAME:Marlin 1.1.9 (Github) SOURCE_CODE_URL:https://github.com/"
+                 "MarlinFirmware/Marlin PROTOCOL_VERSION:1.0 MACHINE_TYPE:3D Printer "
+                 "EXTRUDER_COUNT:2 UUID:cede2a2f-41a2-4748-9b12-c55c62f367ff");
+            for (const char* cap : {"SERIAL_XON_XOFF:0", "EEPROM:1", "VOLUMETRIC:1",
+                                    "AUTOREPORT_TEMP:1", "PROGRESS:0", "PRINT_JOB:1", "AUTOLEVEL:0",
+                                    "Z_PROBE:0", "LEVELING_DATA:0", "BUILD_PERCENT:0",
+                                    "SOFTWARE_POWER:0", "TOGGLE_LIGHTS:0",
+                                    "CASE_LIGHT_BRIGHTNESS:0"})
+                emit(std::string("Cap:") + cap);
             emit(std::string("Cap:EMERGENCY_PARSER:") + (o.emergency_parser ? "1" : "0"));
-            emit("Cap:AUTOREPORT_TEMP:1");
-            emit("Cap:HOST_ACTION_COMMANDS:1");
-            emit("Cap:EEPROM:0");
+            emit("Cap:AUTOREPORT_SD_STATUS:0");
+            emit("Cap:THERMAL_PROTECTION:1");
             finish(e, t);
         } else if (w == "M114") {
             char buf[100];
@@ -453,6 +469,13 @@ struct MockGt2560::Impl {
             finish(e, t);
         } else if (w == "T0" || w == "T1") {
             tool = w == "T1" ? 1 : 0;
+            emit("echo:Home XYZ first");  // the GT2560 here has no axes to home
+            emit("echo:Active Extruder: " + std::to_string(tool));
+            finish(e, t);
+        } else if (w == "M302") {
+            // M302 P1 allows cold extrusion, P0 forbids it; S sets the minimum temperature.
+            if (auto v = param(c, 'S')) min_extrude_c = *v;
+            if (auto v = param(c, 'P')) cold_extrusion_allowed = *v != 0;
             finish(e, t);
         } else if (w == "M82" || w == "M83") {
             relative_e = w == "M83";
@@ -466,7 +489,7 @@ struct MockGt2560::Impl {
             }
             finish(e, t);
         } else if (w == "M108" || w == "M112" || w == "M410" || w == "M999" || w == "G28" ||
-                   w == "G90" || w == "G91" || w == "M302" || w == "M17" || w == "M18" ||
+                   w == "G90" || w == "G91" || w == "M17" || w == "M18" ||
                    w == "M84" || w == "M117" || w == "M106" || w == "M107") {
             finish(e, t);
         } else {
@@ -483,6 +506,13 @@ struct MockGt2560::Impl {
             double& pos = e_pos[static_cast<std::size_t>(tool)];
             de = relative_e ? *v : *v - pos;
             pos = relative_e ? pos + *v : *v;
+        }
+        // PREVENT_COLD_EXTRUSION: the E part of a move is dropped, once per move, with a message.
+        if (de != 0 && !cold_extrusion_allowed &&
+            heaters[static_cast<std::size_t>(tool)].temp_c < min_extrude_c) {
+            emit("echo: cold extrusion prevented");
+            de = 0;
+            ++cold_refusals;
         }
         const double duration = f > 0 ? std::abs(de) / (f / 60.0) : 0;
         const double start = std::max(t, planner.empty() ? t : planner.back().end_s);
@@ -745,6 +775,11 @@ bool MockGt2560::killed() const {
     std::lock_guard lock(impl_->mu);
     return impl_->killed;
 }
+std::uint64_t MockGt2560::cold_extrusion_refusals() const {
+    std::lock_guard lock(impl_->mu);
+    return impl_->cold_refusals;
+}
+
 std::uint64_t MockGt2560::rx_bytes_dropped() const {
     std::lock_guard lock(impl_->mu);
     return impl_->dropped;

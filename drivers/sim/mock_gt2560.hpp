@@ -1,6 +1,7 @@
 #pragma once
-// A GT2560 running Marlin, simulated behind a pseudo-terminal (openpty): the driver opens the slave
-// side exactly like /dev/ttyUSB0. It follows the firmware as docs/marlin-link.md describes ("The
+// A GT2560 running stock Marlin 1.1.9 (its messages, capabilities and limits: docs/marlin-link.md,
+// "The mock and Marlin 1.1.9"), simulated behind a pseudo-terminal (openpty): the driver opens the
+// slave side exactly like /dev/ttyUSB0. It follows the firmware as docs/marlin-link.md describes ("The
 // host protocol, from the firmware's side", "Mock board"): reset on open and boot banner,
 // line-number/checksum/resend rules, a 128-byte RX ring that drops bytes when full, a 4-line
 // command buffer, a 16-block planner whose moves take (scaled) real time, two hotends and a bed
@@ -36,6 +37,7 @@ struct MockGt2560Options {
     double temp_window_c = 1.0;       // TEMP_WINDOW / TEMP_BED_WINDOW
     double residency_s = 10.0;        // TEMP_RESIDENCY_TIME
     double keepalive_s = 2.0;         // DEFAULT_KEEPALIVE_INTERVAL
+    double min_extrude_temp_c = 170;  // PREVENT_COLD_EXTRUSION's EXTRUDE_MINTEMP; 0: off (M302 P1)
     std::string link_path;            // optional stable symlink to the slave (survives replug)
     // Executed commands and pin events kept for observation, each; 0: all. A board that runs for
     // long (in the service, the mock-gt2560 tool) keeps a bound: the oldest are dropped.
@@ -97,6 +99,7 @@ class MockGt2560 {
     double temperature_c(int heater) const;
     bool killed() const;
     std::uint64_t rx_bytes_dropped() const;
+    std::uint64_t cold_extrusion_refusals() const;  // E moves refused below min_extrude_temp_c
     // Waits until at least `n` commands have executed; false on timeout (real time).
     bool wait_for_executed(std::size_t n, std::chrono::milliseconds timeout) const;
 

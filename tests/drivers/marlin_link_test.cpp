@@ -82,6 +82,19 @@ TEST_F(MarlinLinkTest, HandshakeResetsNumberingAndReadsCapabilities) {
     EXPECT_TRUE(link_.capabilities().at("EMERGENCY_PARSER"));
 }
 
+TEST_F(MarlinLinkTest, TheMockAnswersAsMarlin119OnTheGt2560) {
+    start();
+    const auto caps = link_.capabilities();
+    EXPECT_TRUE(caps.at("AUTOREPORT_TEMP"));
+    EXPECT_TRUE(caps.at("THERMAL_PROTECTION"));
+    // Cold: the E part of the move is refused (Marlin's PREVENT_COLD_EXTRUSION), the line is
+    // still acknowledged; M302 P1 allows it.
+    ASSERT_TRUE(finish(link_.submit({"M83", "T1", "G1 E5 F600", "M400"}), 10s).ok());
+    EXPECT_EQ(mock_->cold_extrusion_refusals(), 1u);
+    ASSERT_TRUE(finish(link_.submit({"M302 P1", "G1 E5 F600", "M400"}), 10s).ok());
+    EXPECT_EQ(mock_->cold_extrusion_refusals(), 1u);
+}
+
 TEST_F(MarlinLinkTest, TenThousandLinesWithOnePercentCorruptionRunExactlyOnceInOrder) {
     start();
     const auto job = numbered_job(10'000);
@@ -204,7 +217,8 @@ TEST_F(MarlinLinkTest, CutWithoutM400FiresWhileTheFeedIsStillRunning) {
     sim::MockGt2560Options mo;
     mo.time_scale = 20;
     start(mo);
-    ASSERT_TRUE(finish(link_.submit({"T1", "M83", "G1 E20 F300", "M42 P11 S255"})).ok());
+    // M302 P1: extrude cold (these tests are about timing, not heat), as a host would on a bench.
+    ASSERT_TRUE(finish(link_.submit({"M302 P1", "T1", "M83", "G1 E20 F300", "M42 P11 S255"})).ok());
     const auto pins = mock_->pin_events();
     ASSERT_EQ(pins.size(), 1u);
     EXPECT_EQ(pins[0].planner_blocks_pending, 1);  // why the controller always syncs first
@@ -216,7 +230,7 @@ TEST_F(MarlinLinkTest, MovesRunBackToBackAfterTheirOks) {
     sim::MockGt2560Options mo;
     mo.time_scale = 20;
     start(mo);
-    ASSERT_TRUE(finish(link_.submit({"T1", "M83", "G1 E20 F300", "G1 E-1 F2400"})).ok());
+    ASSERT_TRUE(finish(link_.submit({"M302 P1", "T1", "M83", "G1 E20 F300", "G1 E-1 F2400"})).ok());
     const auto log = mock_->executed();
     ASSERT_GE(log.size(), 2u);
     const auto& feed = log[log.size() - 2];
