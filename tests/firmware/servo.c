@@ -21,7 +21,7 @@ ISR(TIMER3_COMPA_vect) {
 void servo_init(void) {
     DDRB |= _BV(PB5);
     TCCR3A = 0;
-    TCCR3B = _BV(WGM32) | _BV(CS31); /* CTC, 2 MHz */
+    TCCR3B = _BV(WGM32); /* CTC; the clock runs only while the servo is driven */
 }
 
 void servo_write(uint8_t angle) {
@@ -32,10 +32,12 @@ void servo_write(uint8_t angle) {
         OCR3A = 100;
         TCNT3 = 0;
         TIMSK3 = _BV(OCIE3A);
+        TCCR3B = _BV(WGM32) | _BV(CS31); /* 2 MHz */
     }
 }
 
 void servo_detach(void) {
     TIMSK3 = 0;
+    TCCR3B = _BV(WGM32);
     PORTB &= (uint8_t)~_BV(PB5);
 }

@@ -35,6 +35,7 @@ static void start_next(void) {
     if (q_head == q_tail) {
         running = false;
         TIMSK1 = 0;
+        TCCR1B = _BV(WGM12);  /* clock off while idle: a running timer costs the simulator */
         return;
     }
     const volatile Move* m = &queue[q_head];
@@ -45,6 +46,7 @@ static void start_next(void) {
     TCNT1 = 0;
     running = true;
     TIMSK1 = _BV(OCIE1A);
+    TCCR1B = _BV(WGM12) | _BV(CS11); /* CTC, 16 MHz / 8 = 2 MHz */
 }
 
 ISR(TIMER1_COMPA_vect) {
@@ -64,7 +66,7 @@ void stepper_init(void) {
     PORTG |= _BV(PG0); /* disabled until the first move */
     PORTL |= _BV(PL1);
     TCCR1A = 0;
-    TCCR1B = _BV(WGM12) | _BV(CS11); /* CTC, 16 MHz / 8 = 2 MHz */
+    TCCR1B = _BV(WGM12); /* CTC; the clock runs only while a move does */
 }
 
 bool stepper_queue(uint8_t extruder, int32_t steps, float steps_per_s) {

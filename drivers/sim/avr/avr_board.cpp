@@ -3,6 +3,7 @@
 #include "drivers/sim/sim_pty.hpp"
 
 #include <avr_adc.h>
+#include <avr_extint.h>
 #include <avr_ioport.h>
 #include <avr_uart.h>
 #include <sim_avr.h>
@@ -43,6 +44,9 @@ constexpr avr_io_addr_t ucsr0a_addr = 0xC0;
 constexpr int txen_bit = 3, udre_bit = 5;
 constexpr std::size_t max_pending_out = 64 * 1024;  // what a USB-serial bridge would buffer
 constexpr double thermal_period_s = 1e-3;
+// The MCU runs this much of its time between two looks at the pty and the wall clock: the
+// serial latency the simulator adds (up to one slice each way).
+constexpr double slice_s = 250e-6;
 
 // simavr's own messages: errors and warnings to stderr, the rest dropped.
 extern "C" void simavr_log(avr_t*, const int level, const char* format, va_list ap) {
@@ -197,6 +201,11 @@ struct AvrBoard::Impl {
         flags &= ~static_cast<std::uint32_t>(AVR_UART_FLAG_POLL_SLEEP | AVR_UART_FLAG_STDIO);
         avr_ioctl(mcu, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
 
+        // simavr polls a low-level-triggered external interrupt every few cycles while its pin is
+        // low ("strict" level triggering), enabled or not: the heater pins PE4/PE5 are INT4/INT5,
+        // and that polling took a whole core. The GT2560 uses none of INT0..7 as an interrupt.
+        for (std::uint8_t i = 0; i < 8; ++i) avr_extint_set_strict_lvl_trig(mcu, i, 0);
+
         uart_in = avr_io_getirq(mcu, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
         avr_irq_register_notify(avr_io_getirq(mcu, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
                                 &Impl::on_uart_out, this);
@@ -328,10 +337,11 @@ struct AvrBoard::Impl {
         for (auto& t : now) t();
     }
 
-    // Runs the MCU for about a millisecond of its time, then waits until the wall clock has
+    // Runs the MCU for a slice of its time, then waits until the wall clock has
     // caught up. Behind by more than 5 ms, the MCU does not rush: the lag is written off.
     void slice() {
-        const avr_cycle_count_t end = mcu->cycle + period_cycles();
+        const avr_cycle_count_t end =
+            mcu->cycle + static_cast<avr_cycle_count_t>(slice_s * o.frequency_hz);
         while (alive && mcu->cycle < end) {
             const int state = avr_run(mcu);
             if (state == cpu_Crashed || state == cpu_Done) {
