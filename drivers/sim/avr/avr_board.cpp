@@ -1,5 +1,6 @@
 #include "drivers/sim/avr/avr_board.hpp"
 
+#include "drivers/sim/avr/avr_firmware.hpp"
 #include "drivers/sim/sim_pty.hpp"
 
 #include <avr_adc.h>
@@ -7,8 +8,6 @@
 #include <avr_ioport.h>
 #include <avr_uart.h>
 #include <sim_avr.h>
-#include <sim_elf.h>
-#include <sim_hex.h>
 #include <sim_irq.h>
 
 #include <nlohmann/json.hpp>
@@ -19,9 +18,7 @@
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
-#include <cstdlib>
 #include <deque>
-#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <future>
@@ -69,61 +66,6 @@ constexpr PinWire pin_wires[] = {
     {'E', 4, BoardPin::heater0}, {'E', 5, BoardPin::heater1},
     {'B', 5, BoardPin::d11},     {'H', 4, BoardPin::fan},
 };
-
-// A firmware image as simavr reads it, its buffers freed when it goes.
-struct FirmwareImage {
-    elf_firmware_t f{};
-    ihex_chunk_p chunks = nullptr;
-    FirmwareImage() = default;
-    FirmwareImage(const FirmwareImage&) = delete;
-    FirmwareImage& operator=(const FirmwareImage&) = delete;
-    ~FirmwareImage() {
-        if (chunks) {
-            free_ihex_chunks(chunks);  // 1.6 frees the chunks' data, not their array
-            std::free(chunks);
-            return;  // the flash pointer was one of the chunks'
-        }
-        for (std::uint32_t i = 0; f.symbol && i < f.symbolcount; ++i) std::free(f.symbol[i]);
-        for (void* p : {static_cast<void*>(f.symbol), static_cast<void*>(f.flash),
-                        static_cast<void*>(f.eeprom), static_cast<void*>(f.fuse),
-                        static_cast<void*>(f.lockbits)})
-            std::free(p);
-    }
-};
-
-void read_firmware(const std::string& path, FirmwareImage& image) {
-    namespace fs = std::filesystem;
-    if (!fs::is_regular_file(path)) throw std::runtime_error("gt2560-avr: no firmware file " + path);
-    elf_firmware_t& f = image.f;
-    const std::string ext = fs::path(path).extension().string();
-    if (ext == ".hex" || ext == ".ihex") {
-        ihex_chunk_p& chunks = image.chunks;
-        const int n = read_ihex_chunks(path.c_str(), &chunks);
-        if (n <= 0) throw std::runtime_error("gt2560-avr: " + path + " is not an Intel HEX file");
-        for (int i = 0; i < n; ++i) {
-            if (chunks[i].baseaddr >= AVR_SEGMENT_OFFSET_EEPROM) continue;  // EEPROM left blank
-            if (f.flash) throw std::runtime_error("gt2560-avr: " + path + " has several flash chunks");
-            f.flash = chunks[i].data;
-            f.flashsize = chunks[i].size;
-            f.flashbase = chunks[i].baseaddr;
-        }
-        if (!f.flash) throw std::runtime_error("gt2560-avr: " + path + " has no flash data");
-    } else if (elf_read_firmware(path.c_str(), &f) != 0) {
-        throw std::runtime_error("gt2560-avr: " + path + " is not an AVR ELF file");
-    }
-    if (f.mmcu[0] && std::string(f.mmcu) != "atmega2560")
-        throw std::runtime_error("gt2560-avr: " + path + " is built for " + f.mmcu +
-                                 ", the GT2560 has an atmega2560");
-    if (f.flashbase + f.flashsize > 256 * 1024)
-        throw std::runtime_error("gt2560-avr: " + path + " does not fit the 256 KiB flash");
-}
-
-// simavr 1.6 has no call that frees a core (avr_terminate frees its memories, not the core and
-// its IRQs): a stopped core is kept here, reachable, for the rest of the process.
-std::vector<avr_t*>& retired_cores() {
-    static auto* cores = new std::vector<avr_t*>;  // never destroyed: reachable at exit
-    return *cores;
-}
 
 }  // namespace
 
@@ -462,7 +404,7 @@ AvrBoard::~AvrBoard() {
     if (impl_->thread.joinable()) impl_->thread.join();
     if (impl_->mcu) {
         avr_terminate(impl_->mcu);
-        retired_cores().push_back(impl_->mcu);
+        retire_core(impl_->mcu);
     }
 }
 
