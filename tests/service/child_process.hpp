@@ -3,6 +3,7 @@
 // to a log file (read back for messages and errors), SIGTERM or SIGKILL on request, reaped and
 // killed at the end at the latest.
 #include "tests/support/eventually.hpp"
+#include "tests/support/spawn.hpp"
 #include "tests/support/temp_dir.hpp"
 
 #include <chrono>
@@ -16,8 +17,6 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-extern char** environ;
 
 namespace fibrecell::test {
 
@@ -39,18 +38,14 @@ class ChildProcess {
             posix_spawn_file_actions_adddup2(&actions, in[0], 0);
         else
             posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-        args.insert(args.begin(), program);
-        std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        const int rc = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
+        pid_ = spawn_program(program, std::move(args), actions);
         posix_spawn_file_actions_destroy(&actions);
         ::close(fd);
         if (piped_stdin) {
             ::close(in[0]);
             stdin_ = in[1];
         }
-        if (rc != 0) throw std::runtime_error("cannot start " + program);
+        if (pid_ < 0) throw std::runtime_error("cannot start " + program);
     }
     ~ChildProcess() {
         kill_now();

@@ -6,6 +6,7 @@
 // host side here writes and reads that pty as a driver would.
 #include "tests/support/piped_process.hpp"
 #include "tests/support/eventually.hpp"
+#include "tests/support/fd_lines.hpp"
 #include "tests/support/temp_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -21,7 +22,6 @@
 #include <vector>
 
 #include <fcntl.h>
-#include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -44,6 +44,7 @@ class Host {
     explicit Host(const std::string& port) {
         fd_ = ::open(port.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
         if (fd_ < 0) throw std::runtime_error("cannot open " + port);
+        lines_ = fibrecell::test::FdLines(fd_);
         termios t{};
         ::tcgetattr(fd_, &t);
         ::cfmakeraw(&t);
@@ -65,25 +66,7 @@ class Host {
         return s + "*" + std::to_string(sum);
     }
     // The next line, or nothing within `timeout` (or when the port closed).
-    std::optional<std::string> line(std::chrono::milliseconds timeout = 10s) {
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
-        for (;;) {
-            if (const auto nl = buf_.find('\n'); nl != std::string::npos) {
-                std::string l = buf_.substr(0, nl);
-                buf_.erase(0, nl + 1);
-                return l;
-            }
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                deadline - std::chrono::steady_clock::now());
-            if (left <= 0ms) return std::nullopt;
-            pollfd p{fd_, POLLIN, 0};
-            if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
-            char b[512];
-            const ssize_t n = ::read(fd_, b, sizeof b);
-            if (n <= 0) return std::nullopt;
-            buf_.append(b, static_cast<std::size_t>(n));
-        }
-    }
+    std::optional<std::string> line(std::chrono::milliseconds timeout = 10s) { return lines_.next(timeout); }
     // Lines up to and including the first that starts with `prefix`; empty if it never comes.
     std::vector<std::string> until(const std::string& prefix, std::chrono::milliseconds timeout = 20s) {
         std::vector<std::string> lines;
@@ -105,7 +88,7 @@ class Host {
 
   private:
     int fd_ = -1;
-    std::string buf_;
+    fibrecell::test::FdLines lines_;
 };
 
 bool contains(const std::vector<std::string>& lines, const std::string& text) {

@@ -4,6 +4,8 @@
 // deadline (the line is the event they wait for).
 
 #include "tests/support/eventually.hpp"
+#include "tests/support/fd_lines.hpp"
+#include "tests/support/spawn.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,12 +16,9 @@
 #include <vector>
 
 #include <fcntl.h>
-#include <poll.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-extern char** environ;
 
 namespace fibrecell::test {
 
@@ -34,19 +33,16 @@ class PipedProcess {
         posix_spawn_file_actions_adddup2(&actions, in[0], 0);
         posix_spawn_file_actions_adddup2(&actions, out[1], 1);
         posix_spawn_file_actions_adddup2(&actions, err[1], 2);
-        args.insert(args.begin(), program);
-        std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        const int rc = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
+        pid_ = spawn_program(program, std::move(args), actions);
         posix_spawn_file_actions_destroy(&actions);
         close(in[0]);
         close(out[1]);
         close(err[1]);
         in_ = in[1];
-        out_ = out[0];
+        out_ = FdLines(out[0]);
+        out_fd_ = out[0];
         err_ = err[0];
-        if (rc != 0) throw std::runtime_error("cannot start " + program);
+        if (pid_ < 0) throw std::runtime_error("cannot start " + program);
     }
     ~PipedProcess() {
         if (pid_ > 0) {
@@ -54,7 +50,7 @@ class PipedProcess {
             waitpid(pid_, nullptr, 0);
         }
         close(in_);
-        close(out_);
+        close(out_fd_);
         close(err_);
     }
     PipedProcess(const PipedProcess&) = delete;
@@ -68,25 +64,7 @@ class PipedProcess {
     }
 
     // The next line of stdout, or nothing when none comes within `timeout`.
-    std::optional<std::string> read_line(std::chrono::milliseconds timeout) {
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
-        for (;;) {
-            if (const auto nl = out_buf_.find('\n'); nl != std::string::npos) {
-                std::string line = out_buf_.substr(0, nl);
-                out_buf_.erase(0, nl + 1);
-                return line;
-            }
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                deadline - std::chrono::steady_clock::now());
-            if (left <= std::chrono::milliseconds(0)) return std::nullopt;
-            pollfd p{out_, POLLIN, 0};
-            if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
-            char buf[4096];
-            const ssize_t n = read(out_, buf, sizeof buf);
-            if (n <= 0) return std::nullopt;
-            out_buf_.append(buf, static_cast<std::size_t>(n));
-        }
-    }
+    std::optional<std::string> read_line(std::chrono::milliseconds timeout) { return out_.next(timeout); }
 
     // The next stdout line that starts with `prefix`, the prefix taken off; other lines are
     // passed over (a library may print its own).
@@ -125,8 +103,8 @@ class PipedProcess {
 
   private:
     pid_t pid_ = -1;
-    int in_ = -1, out_ = -1, err_ = -1;
-    std::string out_buf_;
+    int in_ = -1, out_fd_ = -1, err_ = -1;
+    FdLines out_;
 };
 
 }  // namespace fibrecell::test
