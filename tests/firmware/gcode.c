@@ -236,11 +236,7 @@ void gcode_line(char* line) {
             return;
         }
         *star = '\0';
-        last_n = n;
-        if (m110) {
-            float v;
-            if (!word(cmd, 'N', &v)) last_n = n; /* "N5 M110": the line's own number */
-        }
+        last_n = n; /* "N5 M110 N5" also sets it when M110 runs; "N5 M110" keeps the line's own */
     } else if (star) {
         line_error("No Line Number with checksum");
         return;

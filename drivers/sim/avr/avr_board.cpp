@@ -41,6 +41,7 @@ constexpr avr_io_addr_t ucsr0a_addr = 0xC0;
 constexpr int txen_bit = 3, udre_bit = 5;
 constexpr std::size_t max_pending_out = 64 * 1024;  // what a USB-serial bridge would buffer
 constexpr double thermal_period_s = 1e-3;
+constexpr double duty_average_s = 1.0;  // the status's heater duty: a moving average this long
 // The MCU runs this much of its time between two looks at the pty and the wall clock: the
 // serial latency the simulator adds (up to one slice each way).
 constexpr double slice_s = 250e-6;
@@ -225,7 +226,7 @@ struct AvrBoard::Impl {
         const double t = b->sim_s();
         for (int h = 0; h < 2; ++h) {
             const double duty = b->pins->take_heater_on_s(h, t) / thermal_period_s;
-            b->duty_avg[h] += (duty - b->duty_avg[h]) * (thermal_period_s / 1.0);
+            b->duty_avg[h] += (duty - b->duty_avg[h]) * (thermal_period_s / duty_average_s);
             b->temp_c[h] = hotend_step(b->temp_c[h], duty, thermal_period_s, b->o.hotend);
             avr_raise_irq(b->adc[h], static_cast<std::uint32_t>(thermistor_millivolts(b->temp_c[h])));
         }
