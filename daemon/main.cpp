@@ -23,13 +23,21 @@ namespace {
 using fibrecell::daemon::service::ServiceConfig;
 
 struct Overrides {
-    std::string state_dir, socket;
+    std::string state_dir, socket, dashboard_token_file;
 };
 
 ServiceConfig load(const std::string& path, const Overrides& o) {
     ServiceConfig c = fibrecell::daemon::service::load_service_config(path);
     if (!o.state_dir.empty()) c.cell.state_dir = o.state_dir;
     if (!o.socket.empty()) c.api.socket_path = o.socket;
+    if (!o.dashboard_token_file.empty()) {
+        c.api.http.enabled = true;
+        try {
+            c.api.http.token = fibrecell::api::read_token_file(o.dashboard_token_file);
+        } catch (const std::runtime_error& e) {
+            throw fibrecell::config::ConfigError(std::string("--dashboard-token-file: ") + e.what());
+        }
+    }
     return c;
 }
 
@@ -54,6 +62,8 @@ int main(int argc, char** argv) {
     app.add_flag("--check-config", check_only, "validate the configuration and exit");
     app.add_option("--state-dir", overrides.state_dir, "job folders (overrides state_dir)");
     app.add_option("--socket", overrides.socket, "the API's Unix socket (overrides api.socket)");
+    app.add_option("--dashboard-token-file", overrides.dashboard_token_file,
+                   "serve the dashboard (api.http) with the token on this file's first line");
     CLI11_PARSE(app, argc, argv);
 
     ServiceConfig config;
@@ -85,6 +95,9 @@ int main(int argc, char** argv) {
     spdlog::info("service.ready cell={} socket={} state_dir={}", config.cell.name,
                  config.api.socket_path, config.cell.state_dir);
     std::cout << "fibrecelld: listening on " << config.api.socket_path << std::endl;
+    if (const auto* dashboard = service.dashboard())
+        std::cout << "fibrecelld: dashboard on http://" << config.api.http.host << ":"
+                  << dashboard->port() << "/" << std::endl;
     sd.ready(service.one_line_status());
     service.on_status_line([&sd](const std::string& line) { sd.status(line); });
 

@@ -19,9 +19,10 @@ declare -A may=(
     [daemon/cell]="config planner drivers/marlin drivers/extruder drivers/device_state.hpp drivers/abb"
     [daemon/sync]="config planner drivers/marlin drivers/extruder drivers/device_state.hpp drivers/abb"
     [daemon/api]="config"
+    [daemon/http]="config daemon/api"
     [daemon/print]="config planner drivers/marlin drivers/extruder drivers/device_state.hpp drivers/abb daemon/cell daemon/sync"
     [daemon/jobs]="config planner drivers/marlin drivers/extruder drivers/device_state.hpp drivers/abb daemon/cell daemon/sync daemon/print"
-    [daemon/service]="config planner drivers daemon/cell daemon/sync daemon/api daemon/print daemon/jobs"
+    [daemon/service]="config planner drivers daemon/cell daemon/sync daemon/api daemon/http daemon/print daemon/jobs"
 )
 
 bad=0

@@ -21,10 +21,24 @@ packages=(
     libgtest-dev libgmock-dev
     libsimavr-dev libelf-dev  # gt2560-avr: the GT2560 running real AVR firmware (simavr)
     gcc-avr avr-libc          # the GT2560 test firmware (tests/firmware)
+    nodejs                    # the dashboard's npm packages (web/package.json)
 )
+# The dashboard's browser tests (tests/web): Debian's Chromium, driven by puppeteer-core.
+test_packages=(chromium fonts-dejavu-core)
 
 # shellcheck source=tools/apt-install.sh
 source "$root/tools/apt-install.sh"
+
+# The dashboard's packages from the npm registry, exactly as web/package-lock.json pins them;
+# again only when the lockfile changed. The pages use them as they are: no bundler, no build step.
+install_web_packages() {
+    command -v npm >/dev/null || install_missing setup npm
+    local stamp="$root/web/node_modules/.package-lock.json"
+    if [ ! -f "$stamp" ] || [ "$root/web/package-lock.json" -nt "$stamp" ]; then
+        echo "setup: installing the dashboard's npm packages (web/package-lock.json)"
+        (cd "$root/web" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+    fi
+}
 
 # configure_and_build DIR [cmake args...]
 configure_and_build() {
@@ -41,17 +55,23 @@ run_demo() {
     local sock="$demo/api.sock" log="$demo/fibrecelld.log"
     rm -rf "$demo"
     mkdir -p "$demo"
+    # The dashboard too (docs/dashboard.md), with a token of this demo's own.
+    (umask 077 && od -An -tx1 -N16 /dev/urandom | tr -d ' \n' >"$demo/dashboard.token")
     "$release_dir/daemon/fibrecelld" --config "$root/config/cell-demo.yaml" \
-        --state-dir "$demo/state" --socket "$sock" >"$log" 2>&1 &
+        --state-dir "$demo/state" --socket "$sock" \
+        --dashboard-token-file "$demo/dashboard.token" >"$log" 2>&1 &
     local pid=$!
     # shellcheck disable=SC2064  # the pid is fixed now; the trap runs after this function
     trap "kill $pid 2>/dev/null; wait $pid 2>/dev/null" EXIT
     for _ in $(seq 100); do
-        [ -S "$sock" ] && break
+        grep -q '^fibrecelld: dashboard on' "$log" 2>/dev/null && break  # after the socket
         kill -0 "$pid" 2>/dev/null || { cat "$log" >&2; echo "demo: fibrecelld did not start" >&2; exit 1; }
         sleep 0.1
     done
     echo "demo: fibrecelld (simulated cell) is up on $sock; log: $log"
+    local url
+    url=$(sed -n 's/^fibrecelld: dashboard on //p' "$log" | head -1)
+    echo "demo: watch it in a browser: $url (token: $(cat "$demo/dashboard.token"))"
     export FIBRECELL_SOCKET="$sock"
     # The cell's state is shown whatever the outcome; the exit status is the print's (0 only
     # for completed).
@@ -68,15 +88,18 @@ test_dir="$root/build/test"
 case "${1:-demo}" in
     build)
         install_missing setup "${packages[@]}"
+        install_web_packages
         configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
         ;;
     demo)
         install_missing setup "${packages[@]}"
+        install_web_packages
         configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
         run_demo
         ;;
     test)
-        install_missing setup "${packages[@]}"
+        install_missing setup "${packages[@]}" "${test_packages[@]}"
+        install_web_packages
         configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
             -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF
         cd "$test_dir"

@@ -29,45 +29,80 @@ std::string trim(std::string s) {
     return s.substr(first, last - first + 1);
 }
 
-void load_tcp(config::Section s, ApiTcpConfig& tcp) {
-    tcp.enabled = s.get_or<bool>("enabled", tcp.enabled);
-    tcp.host = s.get_or<std::string>("host", tcp.host);
-    boost::system::error_code ec;
-    boost::asio::ip::make_address(tcp.host, ec);
-    if (ec)
-        s.fail("host", "must be an IP address (127.0.0.1, ::1, 0.0.0.0), got '" + tcp.host + "'");
-    tcp.port = static_cast<std::uint16_t>(s.integer("port", tcp.port, 1, 65535));
-    tcp.auth_timeout = std::chrono::milliseconds(
-        s.integer("auth_timeout_ms", static_cast<int>(tcp.auth_timeout.count()), 100, 600000));
-
+// `token` or the first line of `token_file` (either may be absent: "").
+std::string read_token(config::Section& s) {
     const bool has_token = s.has("token");
     const bool has_file = s.has("token_file");
     if (has_token && has_file) s.fail("token_file", "give token or token_file, not both");
+    std::string token;
     if (has_token) {
-        tcp.token = s.get<std::string>("token");
-        if (tcp.token.size() < kMinTokenChars)
+        token = s.get<std::string>("token");
+        if (token.size() < kMinTokenChars)
             s.fail("token", "must be at least " + std::to_string(kMinTokenChars) +
                                 " characters (e.g. `openssl rand -hex 16`)");
     } else if (has_file) {
-        const auto path = s.get<std::string>("token_file");
-        std::ifstream in(path);
-        if (!in) s.fail("token_file", "cannot read " + path + ": " + std::strerror(errno));
-        std::string line;
-        std::getline(in, line);
-        tcp.token = trim(line);
-        if (tcp.token.size() < kMinTokenChars)
-            s.fail("token_file", path + ": the token on its first line must be at least " +
-                                     std::to_string(kMinTokenChars) + " characters");
+        try {
+            token = read_token_file(s.get<std::string>("token_file"));
+        } catch (const std::runtime_error& e) {
+            s.fail("token_file", e.what());
+        }
     } else {
         s.get_or<std::string>("token", "");  // mark both keys as known
         s.get_or<std::string>("token_file", "");
     }
+    return token;
+}
+
+std::string ip_address(config::Section& s, const std::string& fallback) {
+    std::string host = s.get_or<std::string>("host", fallback);
+    boost::system::error_code ec;
+    boost::asio::ip::make_address(host, ec);
+    if (ec) s.fail("host", "must be an IP address (127.0.0.1, ::1, 0.0.0.0), got '" + host + "'");
+    return host;
+}
+
+void load_http(config::Section s, ApiHttpConfig& http) {
+    http.enabled = s.get_or<bool>("enabled", http.enabled);
+    http.host = ip_address(s, http.host);
+    http.port = static_cast<std::uint16_t>(s.integer("port", http.port, 0, 65535));
+    http.token = read_token(s);
+    if (s.has("web_root")) http.web_root = s.path_or("web_root", "");
+    http.session_lifetime = std::chrono::seconds(static_cast<long>(
+        3600 * s.number("session_hours", 12, 0.01, 24 * 30)));
+    http.login_failures_per_minute =
+        s.integer("login_failures_per_minute", http.login_failures_per_minute, 1, 1000);
+    http.secure_cookie = s.get_or<bool>("secure_cookie", http.secure_cookie);
+    if (http.enabled && http.token.empty())
+        s.fail("enabled", "the dashboard needs a token: set http.token or http.token_file");
+    s.finish();
+}
+
+void load_tcp(config::Section s, ApiTcpConfig& tcp) {
+    tcp.enabled = s.get_or<bool>("enabled", tcp.enabled);
+    tcp.host = ip_address(s, tcp.host);
+    tcp.port = static_cast<std::uint16_t>(s.integer("port", tcp.port, 1, 65535));
+    tcp.auth_timeout = std::chrono::milliseconds(
+        s.integer("auth_timeout_ms", static_cast<int>(tcp.auth_timeout.count()), 100, 600000));
+
+    tcp.token = read_token(s);
     if (tcp.enabled && tcp.token.empty())
         s.fail("enabled", "TCP needs a token: set tcp.token or tcp.token_file");
     s.finish();
 }
 
 }  // namespace
+
+std::string read_token_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+    std::string line;
+    std::getline(in, line);
+    std::string token = trim(line);
+    if (token.size() < kMinTokenChars)
+        throw std::runtime_error(path + ": the token on its first line must be at least " +
+                                 std::to_string(kMinTokenChars) + " characters");
+    return token;
+}
 
 bool parse_octal_mode(const std::string& text, unsigned& mode) {
     std::string digits = text;
@@ -117,6 +152,7 @@ ApiConfig load_api_config(config::Section s) {
         "max_client_queue_bytes", static_cast<int>(c.max_client_queue_bytes), 64 << 10, 1 << 30));
     c.max_batch_calls = s.integer("max_batch_calls", c.max_batch_calls, 1, 100000);
     load_tcp(s.section("tcp"), c.tcp);
+    load_http(s.section("http"), c.http);
     s.finish();
     return c;
 }

@@ -8,6 +8,7 @@
 //     socket_group: fibrecell   # optional: name or numeric gid
 //     max_request_bytes: 16777216
 //     tcp: {enabled: true, host: 127.0.0.1, port: 7420, token_file: /etc/fibrecelld/api.token}
+//     http: {enabled: true, port: 7480, token_file: /etc/fibrecelld/dashboard.token}
 
 #include "config/yaml_section.hpp"
 
@@ -26,11 +27,25 @@ struct ApiTcpConfig {
     std::chrono::milliseconds auth_timeout{10000};  // a connection must call server.auth by then
 };
 
+// The dashboard's HTTP listener (daemon/http, docs/dashboard.md): the pages, a login with a
+// token of its own (a session cookie), and a WebSocket that speaks this API.
+struct ApiHttpConfig {
+    bool enabled = false;
+    std::string host = "127.0.0.1";  // loopback: reach it from elsewhere through a TLS proxy
+    std::uint16_t port = 7480;       // 0 (tests only): an ephemeral port
+    std::string token;               // from `token` or the first line of `token_file`
+    std::string web_root;            // the pages' folder; "" for the installed or built ones
+    std::chrono::seconds session_lifetime{12 * 3600};  // a login lasts this long
+    int login_failures_per_minute = 5;  // per client address; beyond it logins wait
+    bool secure_cookie = false;         // behind an https proxy: the cookie only over TLS
+};
+
 struct ApiConfig {
     std::string socket_path = "/run/fibrecelld/api.sock";
     unsigned socket_mode = 0660;  // permission bits of the socket file
     std::string socket_group;     // group name or numeric gid; "" keeps the process's group
     ApiTcpConfig tcp;
+    ApiHttpConfig http;
     std::size_t max_request_bytes = std::size_t{16} << 20;  // one request line; jobs carry files
     int max_clients = 64;                                   // connections at once, both transports
     // Connections admitted beyond max_clients that may call only the control methods
@@ -55,6 +70,10 @@ struct ApiConfig {
 ApiConfig load_api_config(config::Section s);
 // The same for a bare `api:` node; `origin` names the file in messages.
 ApiConfig load_api_config(const YAML::Node& node, const std::string& origin);
+
+// The token on the first line of `path` (surrounding blanks dropped); throws std::runtime_error
+// naming the file when it cannot be read or the token is shorter than 16 characters.
+std::string read_token_file(const std::string& path);
 
 // Parses an octal file mode ("0660", "660", "0o660"); returns false when it is not one (<= 0777).
 bool parse_octal_mode(const std::string& text, unsigned& mode);

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/dispatch.hpp>
+#include <boost/asio/local/connect_pair.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 
@@ -270,6 +271,21 @@ void ApiServer::update_limits(const ApiConfig& config) {
         spdlog::info("api.limits_updated max_request_bytes={} max_clients={} progress_rate_hz={}",
                      config.max_request_bytes, config.max_clients, config.progress_rate_hz);
     });
+}
+
+local_stream::socket ApiServer::open_bridge(std::string peer) {
+    const auto& core = impl_->core;
+    local_stream::socket ours(core->io);
+    local_stream::socket theirs(core->io);
+    asio::local::connect_pair(ours, theirs);
+    asio::post(core->strand, [core, peer = std::move(peer),
+                              sock = std::make_shared<local_stream::socket>(std::move(theirs))] {
+        if (core->stopped) return;  // closing `sock` here: the caller's end reads EOF
+        ClientSession::Socket generic(core->io, asio::generic::stream_protocol(local_stream()),
+                                      sock->release());
+        admit(core, std::move(generic), Transport::websocket, peer);
+    });
+    return ours;
 }
 
 std::uint16_t ApiServer::tcp_port() const {

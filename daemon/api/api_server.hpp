@@ -21,6 +21,7 @@
 #include "daemon/api/method_registry.hpp"
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/local/stream_protocol.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -77,6 +78,12 @@ class ApiServer {
     // Applies the settings that need no new listener (token, limits, progress rate); a changed
     // socket path/mode/group or TCP address takes a restart. Thread-safe.
     void update_limits(const ApiConfig& config);
+
+    // A connection another listener accepted and authenticated (the dashboard's WebSocket,
+    // daemon/http): returns our end of a local socket pair whose other end is served like any
+    // client (same methods, limits and events), newline-delimited. `peer` names it in logs.
+    // Thread-safe; after stop() the returned socket reads EOF at once.
+    boost::asio::local::stream_protocol::socket open_bridge(std::string peer);
 
     std::uint16_t tcp_port() const;  // the bound TCP port (0 when TCP is off)
     const std::string& socket_path() const;

@@ -6,13 +6,14 @@
 
 namespace fibrecell::api {
 
-enum class Transport { unix_socket, tcp };
+// websocket: a dashboard connection, its login checked by the HTTP listener (daemon/http).
+enum class Transport { unix_socket, tcp, websocket };
 
 struct CallContext {
     std::string method;        // "job.start"
     std::uint64_t client = 0;  // connection number, unique for the server's lifetime
     Transport transport = Transport::unix_socket;
-    std::string peer;           // "unix uid=1000 pid=4242" or "tcp 127.0.0.1:51234", for logs
+    std::string peer;           // "unix uid=1000 pid=4242", "tcp 127.0.0.1:51234", "websocket ...": logs
     bool notification = false;  // no id: the answer is discarded
 };
 

@@ -2,6 +2,7 @@
 #include "daemon/api/client_session.hpp"
 
 #include "daemon/api/params.hpp"
+#include "daemon/api/token.hpp"
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/dispatch.hpp>
@@ -12,16 +13,6 @@ namespace {
 
 constexpr std::size_t kMaxTopicsPerClient = 1000;
 constexpr std::size_t kMaxTopicChars = 200;
-
-// Compares in time independent of where the first difference is.
-bool same_token(const std::string& given, const std::string& expected) {
-    if (expected.empty()) return false;
-    unsigned diff = given.size() == expected.size() ? 0u : 1u;
-    for (std::size_t i = 0; i < given.size(); ++i)
-        diff |= static_cast<unsigned>(static_cast<unsigned char>(given[i]) ^
-                                      static_cast<unsigned char>(expected[i % expected.size()]));
-    return diff == 0;
-}
 
 }  // namespace
 

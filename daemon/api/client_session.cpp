@@ -29,7 +29,8 @@ ClientSession::ClientSession(std::shared_ptr<ServerCore> core, Socket socket, st
       id_(id),
       transport_(transport),
       peer_(std::move(peer)),
-      authenticated_(transport == Transport::unix_socket),  // the socket's mode decided already
+      // The socket's mode or the dashboard's login decided already; TCP calls server.auth.
+      authenticated_(transport != Transport::tcp),
       gate_(core_->strand, interval_of(core_->config.progress_rate_hz),
             [this](const Line& line) { send_notification(line); }),
       auth_timer_(core_->strand),

@@ -177,6 +177,13 @@ json PrintRunner::progress_json() const {
     const double run_fraction =
         total > first ? static_cast<double>(done - first) / static_cast<double>(total - first) : 0;
     if (run_fraction > 0.02) p["eta_s"] = elapsed * (1 - run_fraction) / run_fraction;
+    // Where the robot was at its last confirmed event (the bed frame), for the dashboard's layer
+    // view: the service hears of events, not of every point between them.
+    if (done >= 1 && done <= total) {
+        const auto& e = a.plan.program.events[static_cast<std::size_t>(done - 1)];
+        p["position_mm"] = {e.position_mm.x(), e.position_mm.y(), e.position_mm.z()};
+        p["path"] = e.path + 1;
+    }
     return p;
 }
 

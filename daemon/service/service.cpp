@@ -6,11 +6,14 @@
 #include "daemon/api/api_error.hpp"
 #include "daemon/api/params.hpp"
 #include "daemon/print/print_settings.hpp"
+#include "daemon/service/log_feed.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <unistd.h>
 
+#include <charconv>
+#include <filesystem>
 #include <fstream>
 
 namespace fibrecell::daemon::service {
@@ -22,6 +25,7 @@ using jobs::JobAction;
 using jobs::JobRecord;
 using jobs::JobState;
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -127,6 +131,13 @@ void Service::start() {
     api_ = std::make_unique<api::ApiServer>(io_, config_.api);
     register_methods();
     api_->start();
+    if (config_.api.http.enabled) start_dashboard();
+    feed_log_to([api = api_.get()](json line) {
+        api->publish({.topic = api::topic::log,
+                      .method = api::notify::log,
+                      .params = std::move(line),
+                      .delivery = api::Delivery::every});
+    });
 
     // Before the devices start their threads (config/thread_priority.hpp).
     config::set_time_critical_priority(config_.print.realtime_priority);
@@ -175,6 +186,23 @@ void Service::start() {
     tick();
 }
 
+void Service::start_dashboard() {
+    http_ = std::make_unique<http::HttpServer>(io_, config_.api, *api_);
+    // A job's plan files (the layer previews, report.json, toolpaths.json) for its pages.
+    http_->add_file_route("/api/jobs/", [this](std::string_view key) -> std::optional<fs::path> {
+        std::int64_t id = 0;
+        const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), id);
+        if (ec != std::errc() || end != key.data() + key.size() || id <= 0) return std::nullopt;
+        return store_->plan_dir(id);
+    });
+    try {
+        http_->start();
+    } catch (...) {
+        api_->stop();
+        throw;
+    }
+}
+
 std::string Service::reload(const ServiceConfig& next) {
     std::vector<std::string> ignored;
     if (next.cell.simulated != config_.cell.simulated) ignored.push_back("simulated");
@@ -184,6 +212,10 @@ std::string Service::reload(const ServiceConfig& next) {
         ignored.push_back("api listeners");
     config::setup_logging(next.cell.log_level);
     api_->update_limits(next.api);
+    if (http_) http_->update(next.api);
+    if (next.api.http.enabled != config_.api.http.enabled || next.api.http.port != config_.api.http.port ||
+        next.api.http.host != config_.api.http.host)
+        ignored.push_back("api.http listener");
     config_.api = next.api;
     config_.cell.log_level = next.cell.log_level;
     std::string what = "applied log_level, api limits and token";
@@ -197,7 +229,9 @@ std::string Service::reload(const ServiceConfig& next) {
 void Service::stop() {
     if (stopping_ || !store_) return;
     stopping_ = true;
+    feed_log_to(nullptr);
     ticker_.cancel();
+    if (http_) http_->stop();
     if (api_) api_->stop();
     if (planner_) planner_->stop();
     if (printer_) printer_->stop();
@@ -305,6 +339,7 @@ void Service::register_methods() {
                     {"simulated", config_.cell.simulated},
                     {"pid", static_cast<long>(::getpid())},
                     {"tcp_port", api_->tcp_port()},
+                    {"http_port", http_ ? http_->port() : 0},
                     {"state_dir", config_.cell.state_dir}};
     });
 
@@ -408,6 +443,11 @@ void Service::register_methods() {
     api_->add_method("job.remove", [this](const json& params, const CallContext& ctx) {
         const std::int64_t id = job_param(params, ctx, false);
         const JobRecord r = as_api([&] { return store_->request(id, JobAction::remove); });
+        // Its watchers (another dashboard) hear that it is gone; the store has no record left.
+        api_->publish({.topic = std::to_string(r.id),
+                       .method = api::notify::job_state,
+                       .params = {{"id", r.id}, {"name", r.name}, {"state", "removed"}},
+                       .delivery = api::Delivery::every});
         return json{{"removed", r.id}};
     });
 

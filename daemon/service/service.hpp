@@ -8,6 +8,7 @@
 #include "daemon/api/api_config.hpp"
 #include "daemon/api/api_server.hpp"
 #include "daemon/cell/cell_config.hpp"
+#include "daemon/http/http_server.hpp"
 #include "daemon/jobs/job_store.hpp"
 #include "daemon/jobs/jobs_config.hpp"
 #include "daemon/jobs/plan_runner.hpp"
@@ -58,9 +59,11 @@ class Service {
     void on_status_line(std::function<void(const std::string&)> f) { status_line_ = std::move(f); }
 
     const api::ApiServer& api() const { return *api_; }
+    const http::HttpServer* dashboard() const { return http_.get(); }  // null when api.http is off
 
   private:
     void register_methods();
+    void start_dashboard();
     nlohmann::json job_json(const jobs::JobRecord& r) const;
     nlohmann::json cell_status() const;
     std::int64_t job_param(const nlohmann::json& params, const api::CallContext& ctx,
@@ -72,6 +75,7 @@ class Service {
     ServiceConfig config_;
     std::unique_ptr<config::DirectoryLock> state_lock_;  // held while the service runs
     std::unique_ptr<api::ApiServer> api_;
+    std::unique_ptr<http::HttpServer> http_;  // the dashboard (api.http), after api_
     std::unique_ptr<jobs::JobStore> store_;
     std::unique_ptr<CellDevices> devices_;
     std::unique_ptr<jobs::ThreadPool> planning_pool_;  // before planner_, which uses it

@@ -152,6 +152,12 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
     append_number(out, frame.width());
     out += ' ';
     append_number(out, frame.height());
+    // The model point (x0, y0) [mm] is the view's top left corner: the dashboard draws the
+    // robot's position on the layer with x - x0, y0 - y.
+    out += "\" data-model-x0=\"";
+    append_number(out, frame.view.min().x() - frame.margin);
+    out += "\" data-model-y0=\"";
+    append_number(out, frame.view.max().y() + frame.margin);
     out += "\">\n<style>";
     out += svg_style;
     out += "</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";

@@ -1,0 +1,68 @@
+#pragma once
+// The dashboard's HTTP listener (docs/dashboard.md): serves the pages under the web root, a login
+// with the dashboard's token that sets an HTTP-only session cookie, and a WebSocket at /api/ws
+// that speaks the socket API's JSON-RPC, served by the same ApiServer as every other client
+// (ApiServer::open_bridge): one dispatcher, the same limits, the same errors.
+//
+//   HttpServer http(io, config.api, api);
+//   http.add_file_route("/api/jobs/", [&](std::string_view id) { return plan_dir(id); });
+//   http.start();   // throws api::ApiStartError with a one-line reason
+//
+// Threading: each connection runs on a strand of its own; the shared state is behind a mutex.
+// start(), stop() and update() may be called from any thread; destroy after the io_context has
+// stopped running or from one of its threads.
+
+#include "daemon/api/api_config.hpp"
+#include "daemon/api/api_server.hpp"
+
+#include <boost/asio/io_context.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace fibrecell::http {
+
+struct HttpStats {
+    std::uint64_t connections = 0;     // HTTP connections accepted
+    std::uint64_t logins = 0;          // right tokens
+    std::uint64_t login_failures = 0;  // wrong tokens
+    std::uint64_t login_throttled = 0; // refused unseen: too many wrong tokens from the address
+    std::uint64_t websockets = 0;      // WebSocket connections bridged to the API
+    std::uint64_t unauthorized = 0;    // API requests without a valid session
+};
+
+// Files behind the login: a request for PREFIX KEY/PATH is the file PATH below the folder the
+// resolver gives for KEY (nullopt: not found), served like a page: ordinary names only, nothing
+// outside that folder. It runs on an io thread.
+using FileResolver = std::function<std::optional<std::filesystem::path>(std::string_view key)>;
+
+class HttpServer {
+  public:
+    HttpServer(boost::asio::io_context& io, api::ApiConfig config, api::ApiServer& api);
+    ~HttpServer();
+    HttpServer(const HttpServer&) = delete;
+    HttpServer& operator=(const HttpServer&) = delete;
+
+    // Files behind the login under `prefix` ("/api/jobs/"). Before start().
+    void add_file_route(std::string prefix, FileResolver resolver);
+
+    void start();  // binds config.http.host:port; throws api::ApiStartError
+    void stop();   // closes the listener; WebSockets end with the ApiServer's clients
+    // A new token or login limit (SIGHUP): a changed token ends every session.
+    void update(const api::ApiConfig& config);
+
+    std::uint16_t port() const;  // the bound port
+    const std::filesystem::path& web_root() const;
+    HttpStats stats() const;
+
+  private:
+    struct Impl;
+    std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace fibrecell::http
