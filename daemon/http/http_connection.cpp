@@ -64,7 +64,10 @@ HttpConnection::HttpConnection(std::shared_ptr<HttpCore> core, asio::ip::tcp::so
     const auto remote = stream_.socket().remote_endpoint(ec);
     address_ = ec ? "unknown" : remote.address().to_string();
     peer_ = ec ? "unknown" : address_ + ":" + std::to_string(remote.port());
+    core_->counters.open++;
 }
+
+HttpConnection::~HttpConnection() { core_->counters.open--; }
 
 void HttpConnection::start() {
     // On the connection's strand from the first step (the stream was made with one).
@@ -184,9 +187,9 @@ void HttpConnection::upgrade(Request&& req) {
     // Slightly over the API's own limit: a request just too long gets the API's answer.
     ws->read_message_max(max_request + kWebSocketSlack);
     auto self = shared_from_this();
+    core_->counters.websockets++;
     ws->async_accept(req, [self, ws, max_line](const boost::system::error_code& ec) {
         if (ec) return;
-        self->core_->counters.websockets++;
         spdlog::info("http.websocket peer={}", self->peer_);
         auto api = self->core_->api.open_bridge("websocket " + self->peer_);
         std::make_shared<WebSocketBridge>(std::move(*ws), std::move(api), max_line)->start();

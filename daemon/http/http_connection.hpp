@@ -21,6 +21,9 @@ using Request = boost::beast::http::request<boost::beast::http::string_body>;
 class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   public:
     HttpConnection(std::shared_ptr<HttpCore> core, boost::asio::ip::tcp::socket socket);
+    ~HttpConnection();
+    HttpConnection(const HttpConnection&) = delete;
+    HttpConnection& operator=(const HttpConnection&) = delete;
     void start();
 
   private:

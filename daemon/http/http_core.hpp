@@ -25,6 +25,8 @@ struct HttpCounters {
     std::atomic<std::uint64_t> login_throttled{0};
     std::atomic<std::uint64_t> websockets{0};
     std::atomic<std::uint64_t> unauthorized{0};
+    std::atomic<std::uint64_t> refused_busy{0};
+    std::atomic<std::uint64_t> open{0};  // HTTP connections now (not yet WebSockets)
 };
 
 struct HttpCore {
@@ -42,6 +44,7 @@ struct HttpCore {
     api::ApiConfig config;  // guarded
     SessionTable sessions;  // guarded
     LoginGuard guard;       // guarded
+    Clock::time_point last_busy_warning;  // guarded
 };
 
 }  // namespace fibrecell::http

@@ -31,7 +31,30 @@ void accept_next(const std::shared_ptr<HttpCore>& core) {
                 return;
             }
             core->counters.connections++;
-            std::make_shared<HttpConnection>(core, std::move(socket))->start();
+            // As many HTTP connections as the API has clients, no more: a flood of them never
+            // takes the descriptors the operator's control connections need.
+            std::size_t limit = 0;
+            bool say = false;  // at most once a second: a flood must not flood the log too
+            {
+                const std::lock_guard lock(core->mutex);
+                limit = static_cast<std::size_t>(core->config.max_clients);
+                if (core->counters.open.load() >= limit &&
+                    Clock::now() - core->last_busy_warning > std::chrono::seconds(1)) {
+                    core->last_busy_warning = Clock::now();
+                    say = true;
+                }
+            }
+            if (core->counters.open.load() >= limit) {
+                core->counters.refused_busy++;
+                if (say)
+                    spdlog::warn("http.connection_refused: {} HTTP connections open "
+                                 "(api.max_clients); {} refused so far",
+                                 limit, core->counters.refused_busy.load());
+                boost::system::error_code ignored;
+                socket.close(ignored);
+            } else {
+                std::make_shared<HttpConnection>(core, std::move(socket))->start();
+            }
             accept_next(core);
         });
 }
@@ -126,7 +149,9 @@ HttpStats HttpServer::stats() const {
             .login_failures = c.login_failures.load(),
             .login_throttled = c.login_throttled.load(),
             .websockets = c.websockets.load(),
-            .unauthorized = c.unauthorized.load()};
+            .unauthorized = c.unauthorized.load(),
+            .refused_busy = c.refused_busy.load(),
+            .open = c.open.load()};
 }
 
 }  // namespace fibrecell::http

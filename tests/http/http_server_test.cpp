@@ -309,4 +309,34 @@ TEST_F(HttpServerTest, PlanFilesNeedTheLoginAndStayInTheirFolder) {
             << target;
 }
 
+TEST_F(HttpServerTest, NoMoreHttpConnectionsThanTheApiHasClients) {
+    config_.max_clients = 3;
+    http_->update(config_);
+    std::vector<tcp::socket> idle;
+    for (int i = 0; i < 3; ++i) idle.push_back(connect());
+    // Each is served (a round trip proves the server counted it) and kept open.
+    for (auto& s : idle) {
+        bhttp::request<bhttp::empty_body> req{bhttp::verb::get, "/api/session", 11};
+        req.set(bhttp::field::host, "127.0.0.1");
+        bhttp::write(s, req);
+        beast::flat_buffer buffer;
+        Response res;
+        bhttp::read(s, buffer, res);
+        EXPECT_EQ(res.result(), bhttp::status::ok);
+    }
+    tcp::socket extra = connect();
+    char byte = 0;
+    beast::error_code ec;
+    extra.read_some(asio::buffer(&byte, 1), ec);
+    EXPECT_EQ(ec, asio::error::eof) << "the fourth is closed at once: " << ec.message();
+    EXPECT_EQ(http_->stats().refused_busy, 1u);
+
+    idle.pop_back();  // one leaves: once the server has seen it go, there is room again
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (http_->stats().open >= 3 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(http_->stats().open, 2u);
+    EXPECT_EQ(request(bhttp::verb::get, "/api/session").result(), bhttp::status::ok);
+}
+
 }  // namespace

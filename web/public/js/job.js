@@ -132,7 +132,7 @@ async function loadPlan() {
 function redraw() {
   const s = state;
   s.head.replaceChildren(el("h1", {}, `Job ${s.job.id}: ${s.job.name} `, stateBadge(s.job)),
-    s.job.reason ? el("p", { class: "error" }, s.job.reason) : null);
+    el("p", { class: "error", id: "job-reason" }, s.job.reason || ""));
   s.progress.replaceChildren(progressBox(s.job) || "");
   s.result.replaceChildren(resultBox(s.job) || "");
   s.actions.replaceChildren(...(actions[s.job.state] || []).map((a) =>
