@@ -54,7 +54,8 @@ function resultBox(job) {
     ["outcome", stateBadge(job)],
     ["events", `${r.events_done}/${r.events}`],
     ["elapsed", `${formatDuration(r.elapsed_s)} (robot time ${formatDuration(r.robot_time_s)})`],
-    ["latency", r.latency_ms ? `${fixed(r.latency_ms.median, 1)} ms median, ${fixed(r.latency_ms.p99, 1)} ms p99` : "–"],
+    // Robot event to extruder command, per event kind.
+    ["sync latency p99", r.latency_ms ? Object.entries(r.latency_ms).map(([kind, l]) => `${kind} ${fixed(l.p99, 2)}`).join(", ") + " ms" : "–"],
     ["cut position error", r.cut_error_mm ? `${fixed(r.cut_error_mm.median, 2)} mm median, ${fixed(r.cut_error_mm.max, 2)} mm max` : "–"],
     ["shortfalls", (r.shortfalls || []).length ? JSON.stringify(r.shortfalls) : "none"],
     ["reason", r.reason || ""],
@@ -124,6 +125,7 @@ async function loadPlan() {
   s.figures.replaceChildren(planFigures(s.report));
   const count = (s.report.layers.pla || 0) + (s.report.layers.ccf || 0);
   s.slider.max = count - 1;
+  s.rangeTo.value = count;
   s.viewer.hidden = false;
   await showLayer(s.job.print ? s.job.print.layer - 1 : 0);
   s.view3d.load(`api/jobs/${s.id}/toolpaths.json`).catch((e) => s.view3dBox.append(el("p", { class: "error" }, errorText(e))));
@@ -153,7 +155,8 @@ export async function render(main, { rpc }, arg) {
   const compare = el("select", { id: "compare-job" }, el("option", { value: "" }, "compare with another job…"));
   compare.addEventListener("change", () => { s.compareId = compare.value ? Number(compare.value) : null; s.compareBox.replaceChildren(); showLayer(s.layer); });
   const range = [el("input", { type: "number", min: 1, value: 1, id: "range-from", size: 4 }),
-                 el("input", { type: "number", min: 1, value: 999, id: "range-to", size: 4 })];
+                 el("input", { type: "number", min: 1, value: 1, id: "range-to", size: 4 })];
+  s.rangeTo = range[1];
   range.forEach((r) => r.addEventListener("change", () => s.view3d.setRange(Number(range[0].value) - 1, Number(range[1].value) - 1)));
   s.viewer.append(el("h2", {}, "Layers"),
     el("div", {}, el("button", { onclick: () => showLayer(s.layer - 1) }, "◀"), " ", s.slider, " ",
@@ -178,6 +181,7 @@ export async function render(main, { rpc }, arg) {
     const wasPlanning = s.job.state === "planning" || s.job.state === "failed";
     s.job = job;
     redraw();
+    if (!job.print && s.svg) placeRobot(s.svg, null);  // the print ended: no robot on the layer
     if (wasPlanning && job.state !== "planning" && job.plan) await loadPlan();
   }));
   s.unsub.push(rpc.on("notify.job_progress", (p) => {
