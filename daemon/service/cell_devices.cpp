@@ -155,6 +155,7 @@ json CellDevices::status() const {
                          board_.fault_detail();
     // Readings only from a board that is there: a fallen-out one's last ones are no news.
     if (board_.state() == drivers::DeviceState::active) {
+        board["emergency_parser"] = board_.emergency_parser();
         const HotendTemps t = temperatures();
         put(board, "pla_c", t.pla_c);
         put(board, "pla_target_c", t.pla_target_c);

@@ -460,8 +460,11 @@ void Service::register_methods() {
         ParamReader(ctx.method, params).finish();
         spdlog::critical("cell.estop requested by {}", ctx.peer);
         printer_->estop();
-        return json{{"estop", true},
-                    {"note", "M112 sent and robot abort requested; not a safety function"}};
+        std::string note = "M112 sent and robot abort requested; not a safety function";
+        if (!devices_->board().emergency_parser())
+            note += "; this board's firmware has no emergency parser: it obeys M112 only after "
+                    "a blocking command (a heat-up) ends";
+        return json{{"estop", true}, {"note", note}};
     });
 
     // What the operator must reach even when api.max_clients connections are taken.

@@ -303,6 +303,11 @@ void MarlinLink::activate() {
     if (cfg.autoreport_interval_s > 0 && autoreport != caps.end() && autoreport->second)
         step(m.queue_lines({"M155 S" + std::to_string(cfg.autoreport_interval_s)}, false),
              "M155 temperature auto-report");
+    if (!emergency_parser())
+        spdlog::warn("extruder.no_emergency_parser device={}: the firmware reports no "
+                     "EMERGENCY_PARSER; an abort cannot break its heat-up and M112 is obeyed only "
+                     "after a blocking command ends (build Marlin with EMERGENCY_PARSER)",
+                     cfg.serial.device);
     transition(DeviceEvent::activate);
     spdlog::info("extruder.link_up device={} baud={}", cfg.serial.device, cfg.serial.baud_rate);
 }
@@ -387,6 +392,11 @@ void MarlinLink::emergency_stop() {
 std::map<std::string, bool> MarlinLink::capabilities() const {
     std::lock_guard lock(impl_->mu);
     return impl_->caps;
+}
+bool MarlinLink::emergency_parser() const {
+    std::lock_guard lock(impl_->mu);
+    const auto it = impl_->caps.find("EMERGENCY_PARSER");
+    return it != impl_->caps.end() && it->second;
 }
 ProtocolStats MarlinLink::stats() const {
     std::lock_guard lock(impl_->mu);

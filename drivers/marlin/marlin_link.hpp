@@ -75,6 +75,10 @@ class MarlinLink {
     void emergency_stop();
 
     std::map<std::string, bool> capabilities() const;  // from M115 `Cap:` lines
+    // Whether the firmware acts on M108/M112/M410 as the bytes arrive (Cap:EMERGENCY_PARSER:1).
+    // Stock Marlin 1.1.9 does not: they wait behind a blocking M109/M400, so abort() cannot break
+    // a heat-up and emergency_stop() is obeyed only after it (docs/marlin-link.md).
+    bool emergency_parser() const;
     ProtocolStats stats() const;
     LinkFailure fault() const;
     std::string fault_detail() const;

@@ -80,6 +80,14 @@ TEST_F(MarlinLinkTest, HandshakeResetsNumberingAndReadsCapabilities) {
     EXPECT_EQ(log[1].text, "M115");
     EXPECT_EQ(log[2].text, "M155 S1");
     EXPECT_TRUE(link_.capabilities().at("EMERGENCY_PARSER"));
+    EXPECT_TRUE(link_.emergency_parser());
+}
+
+TEST_F(MarlinLinkTest, ABoardWithoutTheEmergencyParserIsToldApart) {
+    start({.emergency_parser = false});  // as stock Marlin 1.1.9 is built for the GT2560
+    EXPECT_EQ(link_.state(), DeviceState::active);
+    EXPECT_FALSE(link_.capabilities().at("EMERGENCY_PARSER"));
+    EXPECT_FALSE(link_.emergency_parser());
 }
 
 TEST_F(MarlinLinkTest, TheMockAnswersAsMarlin119OnTheGt2560) {

@@ -223,7 +223,11 @@ try {
   console.log(`PASS; screenshots in ${out}`);
 } catch (e) {
   console.error(`FAIL: ${e.stack || e.message}`);
-  if (page) await shot(page, "failure").catch(() => {});
+  if (page) {
+    await shot(page, "failure").catch(() => {});
+    const seen = await page.evaluate(() => `${location.href}\n${document.body.innerText}`).catch((x) => String(x));
+    console.error(`--- what the page showed ---\n${seen.slice(0, 3000)}`);
+  }
   if (problems.length) console.error(`--- the pages' errors ---\n${problems.join("\n")}`);
   console.error(`--- fibrecelld's log (last 40 lines) ---\n${serviceLog.slice(-40).join("\n")}`);
   code = 1;

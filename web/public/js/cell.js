@@ -17,6 +17,8 @@ function details(status) {
     el("section", { class: "card", id: "board-card" }, el("h2", {}, "Extruder board"), kv([
       ["link", el("span", { class: "state", id: "board-state" }, b.state || "–")],
       ["fault", b.fault || "none"],
+      ["emergency parser", b.emergency_parser === undefined ? "–"
+        : b.emergency_parser ? "yes" : el("span", { class: "error" }, "no: an abort cannot break a heat-up")],
       ["PLA", `${fixed(b.pla_c, 1, " °C")} (target ${fixed(b.pla_target_c, 0, " °C")})`],
       ["CCF", `${fixed(b.ccf_c, 1, " °C")} (target ${fixed(b.ccf_target_c, 0, " °C")})`],
     ])),
