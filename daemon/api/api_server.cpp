@@ -3,6 +3,7 @@
 #include "daemon/api/client_session.hpp"
 #include "daemon/api/server_core.hpp"
 #include "daemon/api/socket_file.hpp"
+#include "daemon/api/tcp_listener.hpp"
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/bind_executor.hpp>
@@ -163,18 +164,9 @@ void bind_tcp(ServerCore& core) {
     const std::string where = "TCP " + c.host + ":" + std::to_string(c.port);
     if (c.token.empty())
         throw ApiStartError("cannot listen on " + where + ": api.tcp needs a token");
-    boost::system::error_code ec;
-    const auto address = asio::ip::make_address(c.host, ec);
-    if (ec) throw ApiStartError("cannot listen on " + where + ": not an IP address");
-    const tcp::endpoint endpoint(address, c.port);
-    auto acceptor = std::make_unique<tcp::acceptor>(core.io);
-    acceptor->open(endpoint.protocol(), ec);
-    if (!ec) acceptor->set_option(tcp::acceptor::reuse_address(true), ec);
-    if (!ec) acceptor->bind(endpoint, ec);
-    if (!ec) acceptor->listen(asio::socket_base::max_listen_connections, ec);
-    if (ec) throw ApiStartError("cannot listen on " + where + ": " + ec.message());
+    auto acceptor = listen_tcp(core.io, "TCP", c.host, c.port);
     core.tcp_port = acceptor->local_endpoint().port();
-    if (!address.is_loopback())
+    if (!acceptor->local_endpoint().address().is_loopback())
         spdlog::warn("api.tcp_exposed address={} port={}: reachable from other hosts (token only)",
                      c.host, core.tcp_port);
     core.tcp_acceptor = std::move(acceptor);

@@ -3,6 +3,7 @@
 #include "daemon/http/http_connection.hpp"
 #include "daemon/http/http_core.hpp"
 #include "daemon/http/static_files.hpp"
+#include "daemon/api/tcp_listener.hpp"
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/steady_timer.hpp>
@@ -89,21 +90,12 @@ void HttpServer::start() {
     const api::ApiHttpConfig& c = core.config.http;
     const std::string where = "HTTP " + c.host + ":" + std::to_string(c.port);
     if (c.token.empty()) throw api::ApiStartError("cannot serve the dashboard on " + where + ": no token");
-    boost::system::error_code ec;
-    const auto address = asio::ip::make_address(c.host, ec);
-    if (ec) throw api::ApiStartError("cannot listen on " + where + ": not an IP address");
     if (!std::filesystem::is_regular_file(core.web_root / "index.html"))
         spdlog::warn("http.no_pages web_root={}: no index.html (set api.http.web_root)",
                      core.web_root.string());
-    const tcp::endpoint endpoint(address, c.port);
-    auto acceptor = std::make_unique<tcp::acceptor>(core.io);
-    acceptor->open(endpoint.protocol(), ec);
-    if (!ec) acceptor->set_option(tcp::acceptor::reuse_address(true), ec);
-    if (!ec) acceptor->bind(endpoint, ec);
-    if (!ec) acceptor->listen(asio::socket_base::max_listen_connections, ec);
-    if (ec) throw api::ApiStartError("cannot listen on " + where + ": " + ec.message());
+    auto acceptor = api::listen_tcp(core.io, "HTTP", c.host, c.port);
     core.port = acceptor->local_endpoint().port();
-    if (!address.is_loopback())
+    if (!acceptor->local_endpoint().address().is_loopback())
         spdlog::warn("http.exposed address={} port={}: the dashboard is reachable from other hosts "
                      "without TLS; put it behind an https proxy (docs/dashboard.md)",
                      c.host, core.port);
