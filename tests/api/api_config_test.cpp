@@ -183,3 +183,37 @@ TEST(ApiConfig, OctalModeParser) {
     EXPECT_FALSE(parse_octal_mode("1000", mode));
     EXPECT_FALSE(parse_octal_mode("0x1ff", mode));
 }
+
+TEST(ApiConfig, TheDashboardsHttpSection) {
+    const ApiConfig off = load("name: cell-1\n");
+    EXPECT_FALSE(off.http.enabled);
+    EXPECT_EQ(off.http.host, "127.0.0.1");
+    EXPECT_EQ(off.http.port, 7480);
+    EXPECT_EQ(off.http.web_root, "");
+
+    const ApiConfig c = load("api:\n  http:\n    enabled: true\n    port: 0\n    token: " + kToken +
+                             "\n    session_hours: 2\n    login_failures_per_minute: 9\n"
+                             "    secure_cookie: true\n    web_root: /srv/fibrecell-web\n");
+    EXPECT_TRUE(c.http.enabled);
+    EXPECT_EQ(c.http.port, 0);
+    EXPECT_EQ(c.http.token, kToken);
+    EXPECT_EQ(c.http.session_lifetime, std::chrono::hours(2));
+    EXPECT_EQ(c.http.login_failures_per_minute, 9);
+    EXPECT_TRUE(c.http.secure_cookie);
+    EXPECT_EQ(c.http.web_root, "/srv/fibrecell-web");
+
+    test::TempDir dir("api-http-token");
+    std::ofstream(dir / "dashboard.token") << "  " << kToken << "  \nsecond line\n";
+    EXPECT_EQ(load("api:\n  http: {token_file: " + (dir / "dashboard.token").string() + "}\n").http.token,
+              kToken);
+    EXPECT_EQ(read_token_file((dir / "dashboard.token").string()), kToken);
+
+    EXPECT_NE(error_of("api:\n  http: {enabled: true}\n").find("api.http.enabled: the dashboard needs a token"),
+              std::string::npos);
+    EXPECT_NE(error_of("api:\n  http: {token: short}\n").find("api.http.token"), std::string::npos);
+    EXPECT_NE(error_of("api:\n  http: {host: dashboard.local}\n").find("api.http.host"), std::string::npos);
+    EXPECT_NE(error_of("api:\n  http: {session_hours: 0}\n").find("api.http.session_hours"), std::string::npos);
+    EXPECT_NE(error_of("api:\n  http: {web_root: relative/dir}\n").find("api.http.web_root"), std::string::npos);
+    EXPECT_NE(error_of("api:\n  http: {tls: true}\n").find("api.http.tls"), std::string::npos);
+    EXPECT_THROW(read_token_file((dir / "missing").string()), std::runtime_error);
+}
