@@ -153,7 +153,13 @@ export async function render(main, { rpc }, arg) {
   const s = state;
   s.slider.addEventListener("input", () => showLayer(Number(s.slider.value)));
   const compare = el("select", { id: "compare-job" }, el("option", { value: "" }, "compare with another job…"));
-  compare.addEventListener("change", () => { s.compareId = compare.value ? Number(compare.value) : null; s.compareBox.replaceChildren(); showLayer(s.layer); });
+  compare.addEventListener("change", () => {
+    s.compareId = compare.value ? Number(compare.value) : null;
+    s.compareBox.replaceChildren();
+    s.compareBox.hidden = !s.compareId;
+    showLayer(s.layer);
+  });
+  s.compareBox.hidden = true;  // until another job is chosen
   const range = [el("input", { type: "number", min: 1, value: 1, id: "range-from", size: 4 }),
                  el("input", { type: "number", min: 1, value: 1, id: "range-to", size: 4 })];
   s.rangeTo = range[1];
@@ -194,6 +200,7 @@ export async function render(main, { rpc }, arg) {
       else if (s.svg && p.print.layer - 1 === s.layer) placeRobot(s.svg, p.print.position_mm);
     }
     s.progress.replaceChildren(progressBox(s.job) || "");
+    s.head.querySelector("h1 .state")?.replaceWith(stateBadge(s.job));  // its layer i/N
   }));
   for (const other of await rpc.call("job.list"))
     if (other.id !== id && other.plan) compare.append(el("option", { value: other.id }, `job ${other.id}: ${other.name}`));
