@@ -188,11 +188,17 @@ void HttpConnection::upgrade(Request&& req) {
     ws->read_message_max(max_request + kWebSocketSlack);
     auto self = shared_from_this();
     core_->counters.websockets++;
-    ws->async_accept(req, [self, ws, max_line](const boost::system::error_code& ec) {
+    ws->async_accept(req, [self, ws, max_line, session = session_id(req)](const boost::system::error_code& ec) {
         if (ec) return;
         spdlog::info("http.websocket peer={}", self->peer_);
         auto api = self->core_->api.open_bridge("websocket " + self->peer_);
-        std::make_shared<WebSocketBridge>(std::move(*ws), std::move(api), max_line)->start();
+        auto session_valid = [core = self->core_, id = session] {
+            const std::lock_guard lock(core->mutex);
+            return core->sessions.valid(id, Clock::now());
+        };
+        std::make_shared<WebSocketBridge>(std::move(*ws), std::move(api), max_line,
+                                          std::move(session_valid))
+            ->start();
     });
 }
 

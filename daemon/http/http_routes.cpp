@@ -28,20 +28,20 @@ std::string session_cookie(const std::string& value, long max_age_s, bool secure
            std::to_string(max_age_s) + "; HttpOnly; SameSite=Strict" + (secure ? "; Secure" : "");
 }
 
-std::string request_cookie(const Request& req) {
+}  // namespace
+
+std::string session_id(const Request& req) {
     const auto it = req.find(bhttp::field::cookie);
     if (it == req.end()) return "";
     return cookie_value(std::string_view(it->value().data(), it->value().size()), kSessionCookie);
 }
-
-}  // namespace
 
 TextResponse json_error(const Request& req, bhttp::status status, const std::string& text) {
     return json_response(req, status, json{{"error", text}});
 }
 
 bool has_session(HttpCore& core, const Request& req) {
-    const std::string id = request_cookie(req);
+    const std::string id = session_id(req);
     if (id.empty()) return false;
     const std::lock_guard lock(core.mutex);
     return core.sessions.valid(id, Clock::now());
@@ -89,7 +89,7 @@ TextResponse login(HttpCore& core, const Request& req, const std::string& addres
 }
 
 TextResponse logout(HttpCore& core, const Request& req) {
-    const std::string id = request_cookie(req);
+    const std::string id = session_id(req);
     bool secure = false;
     {
         const std::lock_guard lock(core.mutex);

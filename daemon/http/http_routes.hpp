@@ -33,6 +33,8 @@ void add_common_headers(Response& res, const Request& req) {
 TextResponse json_error(const Request& req, boost::beast::http::status status,
                         const std::string& text);
 
+// The request's session cookie's value ("" without one).
+std::string session_id(const Request& req);
 // Whether the request's session cookie names a live session.
 bool has_session(HttpCore& core, const Request& req);
 

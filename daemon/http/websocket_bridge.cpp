@@ -11,8 +11,12 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 
-WebSocketBridge::WebSocketBridge(Ws ws, Local api, std::size_t max_line)
-    : ws_(std::move(ws)), api_(std::move(api)), max_line_(max_line) {}
+WebSocketBridge::WebSocketBridge(Ws ws, Local api, std::size_t max_line,
+                                 std::function<bool()> session_valid)
+    : ws_(std::move(ws)),
+      api_(std::move(api)),
+      max_line_(max_line),
+      session_valid_(std::move(session_valid)) {}
 
 void WebSocketBridge::start() {
     read_browser();
@@ -27,8 +31,10 @@ void WebSocketBridge::read_browser() {
 }
 
 void WebSocketBridge::on_browser_message(const boost::system::error_code& ec) {
-    if (ec || done_) {
-        finish();  // the browser closed or broke the connection: the API client goes with it
+    // The browser closed or broke the connection, or its login ended: the API client goes too
+    // (an answer may be on its way to the browser, so no closing handshake here).
+    if (ec || done_ || !session_valid_()) {
+        finish();
         return;
     }
     to_api_ = beast::buffers_to_string(from_browser_.data());
@@ -58,7 +64,11 @@ void WebSocketBridge::read_api() {
 void WebSocketBridge::on_api_line(const boost::system::error_code& ec, std::size_t n) {
     if (done_) return;
     if (ec) {
-        close_browser();  // the API closed this client (stop, idle, an error it answered)
+        close_browser(websocket::close_code::normal);  // the API closed this client
+        return;
+    }
+    if (!session_valid_()) {
+        close_browser(websocket::close_code::policy_error);  // logged out, expired, new token
         return;
     }
     to_browser_.assign(from_api_, 0, n - 1);
@@ -71,8 +81,8 @@ void WebSocketBridge::on_api_line(const boost::system::error_code& ec, std::size
                     });
 }
 
-void WebSocketBridge::close_browser() {
-    ws_.async_close(websocket::close_code::normal,
+void WebSocketBridge::close_browser(websocket::close_code code) {
+    ws_.async_close(code,
                     [self = shared_from_this()](const boost::system::error_code&) { self->finish(); });
 }
 

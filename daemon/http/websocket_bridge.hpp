@@ -9,6 +9,7 @@
 #include <boost/beast/core/tcp_stream.hpp>
 #include <boost/beast/websocket/stream.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -19,8 +20,10 @@ class WebSocketBridge : public std::enable_shared_from_this<WebSocketBridge> {
     using Ws = boost::beast::websocket::stream<boost::beast::tcp_stream>;
     using Local = boost::asio::local::stream_protocol::socket;
 
-    // `max_line`: the longest line the API may send (its per-client queue limit).
-    WebSocketBridge(Ws ws, Local api, std::size_t max_line);
+    // `max_line`: the longest line the API may send (its per-client queue limit). `session_valid`
+    // is asked before every message either way: a logout, an expired login or a new token ends
+    // the WebSocket at its next message (a watcher's next event: within a second).
+    WebSocketBridge(Ws ws, Local api, std::size_t max_line, std::function<bool()> session_valid);
     void start();
 
   private:
@@ -28,12 +31,13 @@ class WebSocketBridge : public std::enable_shared_from_this<WebSocketBridge> {
     void on_browser_message(const boost::system::error_code& ec);
     void read_api();
     void on_api_line(const boost::system::error_code& ec, std::size_t n);
-    void close_browser();
+    void close_browser(boost::beast::websocket::close_code code);
     void finish();
 
     Ws ws_;
     Local api_;
     std::size_t max_line_;
+    std::function<bool()> session_valid_;
     boost::beast::flat_buffer from_browser_;
     std::string to_api_;
     std::string from_api_;

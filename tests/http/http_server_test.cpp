@@ -277,6 +277,31 @@ TEST_F(HttpServerTest, TheWebSocketSpeaksTheSocketApi) {
     EXPECT_EQ(event["params"]["n"], 7);
 }
 
+TEST_F(HttpServerTest, ALogoutOrANewTokenEndsTheWebSocketsOfThatLogin) {
+    const std::string cookie = log_in();
+    auto ws = open_ws(cookie);
+    ASSERT_NE(ws, nullptr);
+    ws->write(asio::buffer(json{{"jsonrpc", "2.0"}, {"id", 1}, {"method", "subscribe"}}.dump()));
+    EXPECT_EQ(read_json(*ws)["id"], 1);
+    request(bhttp::verb::post, "/api/logout", "", cookie);
+    // A watcher's next event finds the login gone: the WebSocket closes instead.
+    api_->publish({.topic = "cell", .method = "notify.cell_status", .params = {{"n", 1}}});
+    beast::flat_buffer buffer;
+    beast::error_code ec;
+    ws->read(buffer, ec);
+    EXPECT_EQ(ec, websocket::error::closed) << ec.message() << " " << beast::buffers_to_string(buffer.data());
+    EXPECT_EQ(ws->reason().code, websocket::close_code::policy_error);
+
+    // A new token (a reload) ends every login, and a request on an open WebSocket finds it so.
+    auto other = open_ws(log_in());
+    ASSERT_NE(other, nullptr);
+    config_.http.token = "another-token-0123456789";
+    http_->update(config_);
+    other->write(asio::buffer(json{{"jsonrpc", "2.0"}, {"id", 2}, {"method", "echo"}}.dump()));
+    other->read(buffer, ec);
+    EXPECT_TRUE(ec) << "an answer came after the token changed: " << beast::buffers_to_string(buffer.data());
+}
+
 TEST_F(HttpServerTest, ARequestOverTheApisLimitGetsTheApisAnswer) {
     auto ws = open_ws(log_in());
     ASSERT_NE(ws, nullptr);
