@@ -132,8 +132,6 @@ void HttpServer::update(const api::ApiConfig& config) {
 
 std::uint16_t HttpServer::port() const { return impl_->core->port; }
 
-const std::filesystem::path& HttpServer::web_root() const { return impl_->core->web_root; }
-
 HttpStats HttpServer::stats() const {
     const HttpCounters& c = impl_->core->counters;
     return {.connections = c.connections.load(),

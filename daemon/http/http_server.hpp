@@ -59,7 +59,6 @@ class HttpServer {
     void update(const api::ApiConfig& config);
 
     std::uint16_t port() const;  // the bound port
-    const std::filesystem::path& web_root() const;
     HttpStats stats() const;
 
   private:
