@@ -500,7 +500,8 @@ void PrintRunner::save_fibre_fed(Active& a, const sync::MeteringStatus& m) {
     if (a.plan.program.events[static_cast<std::size_t>(m.sequence - 1)].kind !=
         abb::EventKind::fibre_start)
         return;
-    if (m.sequence == a.fed_saved.sequence && m.e_fed_mm <= a.fed_saved.mm) return;
+    // Lower than saved only after an MCU reset took back what the board had not run.
+    if (m.sequence == a.fed_saved.sequence && m.e_fed_mm == a.fed_saved.mm) return;
     if (m.e_fed_mm <= 0) return;
     a.journal->fed({m.sequence, m.e_fed_mm});  // queued: a failed write shows in poll_active
     a.fed_saved = {m.sequence, m.e_fed_mm};

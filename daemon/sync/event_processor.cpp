@@ -204,14 +204,18 @@ std::uint64_t EventProcessor::send_for_event(const ProgramEvent& e, const EventC
 
 void EventProcessor::board_reply(std::uint64_t ticket, const CommandOutcome& outcome,
                                  SteadyClock::time_point at) {
-    piece_answered(ticket, outcome);  // also after a fault: what the board took is fed
+    piece_answered(ticket, outcome, at);  // also after a fault: what the board took is fed
     if (faulted_) return;
     if (!outcome.ok()) {
         // A request sent after the link failed only says "not active": name the link's cause.
         const bool link_failed = dev_.board.fault() != drivers::marlin::LinkFailure::none;
         const auto failure = link_failed ? dev_.board.fault() : outcome.failure;
         const std::string detail = link_failed ? dev_.board.fault_detail() : outcome.detail;
-        return fault("extruder board: " + std::string(to_string(failure)) + ": " + detail + where());
+        std::string lost;
+        if (failure == drivers::marlin::LinkFailure::firmware_reset)
+            lost = take_back_unrun_feed(dev_.board.fault_time().value_or(at));
+        return fault("extruder board: " + std::string(to_string(failure)) + ": " + detail + where() +
+                     lost);
     }
     acked_ticket_ = ticket;
     if (const auto probe = ok_probes_.find(ticket); probe != ok_probes_.end()) {
@@ -292,17 +296,38 @@ void EventProcessor::meter(SteadyClock::time_point now) {
                 // the path share that extrude_pla turns back into exactly p.e_mm
                 : send(x.extrude_pla(p.e_mm / metering_->e_per_path_mm, e.speed_mm_s,
                                      options_.pla_line_width_mm, options_.pla_layer_height_mm));
-        metering_->in_flight[ticket] = p.e_mm;
+        const double path_mm = p.e_mm / metering_->e_per_path_mm;
+        metering_->in_flight[ticket] = {p.e_mm, path_mm / e.speed_mm_s / options_.time_scale};
         ++stats_.pieces_sent;
     }
 }
 
-void EventProcessor::piece_answered(std::uint64_t ticket, const CommandOutcome& outcome) {
+void EventProcessor::piece_answered(std::uint64_t ticket, const CommandOutcome& outcome,
+                                    SteadyClock::time_point at) {
     if (!metering_) return;
     const auto piece = metering_->in_flight.find(ticket);
     if (piece == metering_->in_flight.end()) return;
-    if (outcome.ok()) metering_->e_fed_mm += piece->second;
+    if (outcome.ok()) {
+        metering_->e_fed_mm += piece->second.e_mm;
+        metering_->board.acknowledged(piece->second.e_mm, piece->second.run_s, at);
+    }
     metering_->in_flight.erase(piece);
+}
+
+// An MCU reset lost the moves the board had planned: what it acknowledged of the path and had
+// not run by then is taken off the fed amount, so a resume feeds it again. Returns the note for
+// the fault's reason.
+std::string EventProcessor::take_back_unrun_feed(SteadyClock::time_point reset_at) {
+    if (!metering_) return "";
+    const double unrun = std::min(metering_->board.unrun_at(reset_at), metering_->e_fed_mm);
+    if (unrun < 1e-5) return "";
+    metering_->e_fed_mm -= unrun;
+    stats_.feed_lost_in_reset_mm += unrun;
+    spdlog::warn("sync.feed_lost_in_reset {} {:.5f} mm acknowledged, not run; fed={:.5f} mm",
+                 describe(*metering_->event), unrun, metering_->e_fed_mm);
+    return fmt::format("; {:.2f} mm of its feed the board had taken but not run is fed again on "
+                       "resume",
+                       unrun);
 }
 
 // Drops what was not sent yet, counted against the path kind it belonged to.

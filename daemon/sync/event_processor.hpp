@@ -4,6 +4,7 @@
 // meter. It sends board commands (MarlinLink::submit, replies handed to a watcher), writes barrier
 // releases and pause requests (RobotIoLink), and keeps what status() shows. docs/sync-engine.md.
 
+#include "daemon/sync/board_feed_queue.hpp"
 #include "daemon/sync/event_counter.hpp"
 #include "daemon/sync/feed_meter.hpp"
 #include "daemon/sync/latency_stats.hpp"
@@ -80,8 +81,13 @@ class EventProcessor {
         const drivers::abb::ProgramEvent* event;
         FeedMeter meter;
         double e_per_path_mm;  // 1 for fibre; the PLA line's ratio
-        std::map<std::uint64_t, double> in_flight;  // piece tickets -> E, until answered
-        double e_fed_mm = 0;                        // pieces answered ok
+        struct Sent {
+            double e_mm;
+            double run_s;  // real seconds the board takes to feed it (its path time)
+        };
+        std::map<std::uint64_t, Sent> in_flight;  // piece tickets, until answered
+        double e_fed_mm = 0;                      // pieces answered ok
+        BoardFeedQueue board;                     // answered, maybe not run yet
     };
 
     const drivers::abb::ProgramEvent& event(std::int64_t sequence) const;
@@ -98,7 +104,9 @@ class EventProcessor {
     void start_metering(const drivers::abb::ProgramEvent& e, SteadyClock::time_point robot_start);
     void stop_metering();
     void record_shortfall(ShortfallKind kind, const drivers::abb::ProgramEvent& e, double mm);
-    void piece_answered(std::uint64_t ticket, const drivers::marlin::CommandOutcome& outcome);
+    void piece_answered(std::uint64_t ticket, const drivers::marlin::CommandOutcome& outcome,
+                        SteadyClock::time_point at);
+    std::string take_back_unrun_feed(SteadyClock::time_point reset_at);
     std::string where() const;
 
     SyncDevices dev_;

@@ -40,14 +40,23 @@ SteadyClock::time_point FeedMeter::due(std::size_t i) const {
 }
 
 void FeedMeter::skip_fed(double e_mm, SteadyClock::time_point now) {
+    if (!(e_mm >= 0) || e_mm > e_total_mm() + 1e-6)
+        throw std::invalid_argument("metering: " + std::to_string(e_mm) + " mm fed is outside 0.." +
+                                    std::to_string(e_total_mm()) + " mm of the path's feed");
     double fed = 0;
     std::size_t k = 0;
     while (k < pieces_.size() && fed + pieces_[k].e_mm <= e_mm + 1e-6) fed += pieces_[k++].e_mm;
-    if (std::abs(fed - e_mm) > 1e-6)
-        throw std::invalid_argument("metering: " + std::to_string(e_mm) +
-                                    " mm is not a whole number of the path's pieces");
+    double at_mm = k == 0 ? 0 : pieces_[k - 1].path_end_mm;
+    if (const double part = round_e(e_mm - fed); k < pieces_.size() && part > 0) {
+        // It ends inside piece k (a reset lost the end of what the board had taken): the rest
+        // of that piece is fed first, and the robot stands where the fed part ends.
+        MeterPiece& rest = pieces_[k];
+        const double share = part / rest.e_mm;
+        at_mm += share * (rest.path_end_mm - at_mm);
+        rest.e_mm = round_e(rest.e_mm - part);
+        fed_inside_piece_mm_ = part;
+    }
     next_ = k;
-    const double at_mm = k == 0 ? 0 : pieces_[k - 1].path_end_mm;
     robot_start_ = now - std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(
                              at_mm / pacing_.speed_mm_s / pacing_.time_scale));
 }
@@ -75,12 +84,12 @@ void FeedMeter::resume(SteadyClock::time_point now) {
 
 double FeedMeter::e_sent_mm() const {
     const auto end = pieces_.begin() + static_cast<std::ptrdiff_t>(next_);
-    return std::accumulate(pieces_.begin(), end, 0.0,
+    return std::accumulate(pieces_.begin(), end, fed_inside_piece_mm_,
                            [](double s, const MeterPiece& p) { return s + p.e_mm; });
 }
 
 double FeedMeter::e_total_mm() const {
-    return std::accumulate(pieces_.begin(), pieces_.end(), 0.0,
+    return std::accumulate(pieces_.begin(), pieces_.end(), fed_inside_piece_mm_,
                            [](double s, const MeterPiece& p) { return s + p.e_mm; });
 }
 

@@ -37,9 +37,9 @@ class FeedMeter {
     // (real time scaled by time_scale) except while paused.
     FeedMeter(std::vector<MeterPiece> pieces, MeterPacing pacing, SteadyClock::time_point robot_start);
 
-    // Resuming a path: the leading pieces that add up to `e_mm` (what the board already took)
-    // count as sent, and the robot is taken to be at the end of the last of them at `now`.
-    // Throws std::invalid_argument when `e_mm` is not a sum of leading pieces.
+    // Resuming a path: the feed up to `e_mm` (what the board already fed) counts as sent, a
+    // piece it ends inside keeps only its rest, and the robot is taken to be where that feed
+    // ends at `now`. Throws std::invalid_argument when `e_mm` is outside 0..e_total_mm().
     void skip_fed(double e_mm, SteadyClock::time_point now);
 
     // The pieces due at `now`, in order; each is handed out once.
@@ -66,6 +66,7 @@ class FeedMeter {
     SteadyClock::time_point robot_start_;  // moved on by every pause's length
     std::optional<SteadyClock::time_point> paused_at_;
     std::size_t next_ = 0;
+    double fed_inside_piece_mm_ = 0;  // skip_fed's share of the piece it ended inside
 };
 
 }  // namespace fibrecell::daemon::sync

@@ -73,6 +73,9 @@ struct SyncStats {
     double feed_left_at_cut_mm = 0;
     std::uint64_t extrusion_left_at_off = 0;
     double extrusion_left_at_off_mm = 0;
+    // Feed the board acknowledged but, by its feed rate, had not run when its MCU was reset: lost
+    // with its planner, taken off the path's fed amount (a resume feeds it again).
+    double feed_lost_in_reset_mm = 0;
     std::vector<KindTiming> timing;   // per event kind with board commands
     std::uint64_t late_cuts = 0;      // cuts at least SyncOptions::late_cut_mm late
     std::vector<Shortfall> shortfalls;  // in event order, at most max_shortfalls

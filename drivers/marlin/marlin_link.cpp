@@ -46,6 +46,7 @@ struct MarlinLink::Impl {
     ProtocolStats stats;
     LinkFailure failure = LinkFailure::none;
     std::string failure_detail;
+    std::optional<Clock::time_point> failure_time;
     bool seen_start = false;
     std::function<void()> fault_to_state;
 
@@ -85,6 +86,7 @@ struct MarlinLink::Impl {
             caps.clear();
             failure = LinkFailure::none;
             failure_detail.clear();
+            failure_time.reset();
             seen_start = false;
         }
         MarlinProtocol::Hooks hooks;
@@ -138,6 +140,7 @@ struct MarlinLink::Impl {
             std::lock_guard lock(mu);
             failure = f;
             failure_detail = detail;
+            failure_time = Clock::now();
             stats = proto->stats();
         }
         if (fault_to_state) fault_to_state();  // before the requests learn of it
@@ -409,6 +412,10 @@ LinkFailure MarlinLink::fault() const {
 std::string MarlinLink::fault_detail() const {
     std::lock_guard lock(impl_->mu);
     return impl_->failure_detail;
+}
+std::optional<Clock::time_point> MarlinLink::fault_time() const {
+    std::lock_guard lock(impl_->mu);
+    return impl_->failure_time;
 }
 
 void MarlinLink::on_temperature(std::function<void(const TemperatureReport&)> f) {

@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,8 @@ class MarlinLink {
     ProtocolStats stats() const;
     LinkFailure fault() const;
     std::string fault_detail() const;
+    // When the link failed (a firmware reset: when its `start` came); empty while it has not.
+    std::optional<Clock::time_point> fault_time() const;
 
     // Observers (set before activate()).
     void on_temperature(std::function<void(const TemperatureReport&)> f);

@@ -5,7 +5,8 @@
 // planned feed within 0.5%, as many cuts as planned, nothing lost or run twice, though the wire
 // is faulty all along (1% of the host's lines corrupted) and the MCU stops for 2 s mid-print.
 // Then the MCU resets in the middle of the last fibre path: the job holds with the board named,
-// and the resume finishes it. One print for all of it: it takes four minutes of real time.
+// what the board had taken and not run is fed again, and the resume finishes it. One print for
+// all of it: it takes four minutes of real time.
 #include "service_fixture.hpp"
 #include "tests/support/piped_process.hpp"
 #include "tools/board-check/board_check.hpp"
@@ -95,6 +96,7 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
     const json held = wait_for_state(c, id, "paused", 60s);
     ASSERT_EQ(held.value("state", ""), "paused") << held.dump(2) << service_->log();
     EXPECT_NE(held.value("reason", "").find("extruder board"), std::string::npos) << held.value("reason", "");
+    EXPECT_NE(held.value("reason", "").find("fed again on resume"), std::string::npos) << held.value("reason", "");
     ASSERT_EQ(c.call("job.resume", {{"job", id}}).value("state", ""), "printing") << service_->log();
     const json done = wait_for_state(c, id, "completed", 600s);
     ASSERT_TRUE(printed(done)) << done.dump(2) << service_->log();
@@ -121,15 +123,15 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
             EXPECT_NEAR(p.fed_mm, p.planned_mm, 0.005 * p.planned_mm) << p.kind << " layer " << p.layer;
         }
     }
-    // The interrupted path: short by the feed the service reports as dropped, and by what the
-    // firmware had acknowledged but not yet run when it reset (lost with its queue, unknown to
-    // the service): at most its four queued moves.
+    // The interrupted path: what the firmware had acknowledged but not yet run when it reset was
+    // lost with its queue; the service takes it off the fed amount by the board's feed rate and
+    // feeds it again on resume. So the path is short by the feed the service reports as dropped
+    // and no more than a model's error (0.03 mm seen; 0.5 to 3.9 mm when nothing was taken back).
     const auto& interrupted = r.paths[7];
     double reported = 0;
     for (const auto& f : done["result"].value("shortfalls", json::array())) reported += f.value("mm", 0.0);
     const double unknown = interrupted.planned_mm - reported - interrupted.fed_mm;
-    std::printf("interrupted fibre path: planned %.2f mm, fed %.2f mm: %.2f mm reported as dropped, "
-                "%.2f mm lost in the reset\n", interrupted.planned_mm, interrupted.fed_mm, reported, unknown);
-    EXPECT_GE(unknown, -0.05);
-    EXPECT_LE(unknown, 5.0);
+    std::printf("interrupted fibre path: planned %.3f mm, fed %.3f mm: %.3f mm reported as dropped, "
+                "%.3f mm unaccounted for\n", interrupted.planned_mm, interrupted.fed_mm, reported, unknown);
+    EXPECT_NEAR(unknown, 0.0, 0.25);
 }

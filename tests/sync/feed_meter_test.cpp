@@ -116,9 +116,33 @@ TEST(FeedMeter, ResumingSkipsTheFedPiecesAndPacesFromTheirEnd) {
     EXPECT_DOUBLE_EQ(due[0].path_end_mm, 5);
 }
 
-TEST(FeedMeter, ResumingAfterAnAmountThatIsNotWholePiecesIsRefused) {
+// After an MCU reset the board ran only part of what it took: the rest of that piece is fed
+// first, and the robot is where the fed part ends.
+TEST(FeedMeter, ResumingInsideAPieceFeedsItsRestFirst) {
+    const auto t0 = SteadyClock::now();
+    FeedMeter m = ten_pieces(t0, 0.1);
+    const auto resumed_at = t0 + 10s;
+    m.skip_fed(2.25, resumed_at);
+    EXPECT_EQ(m.sent(), 2u);
+    EXPECT_DOUBLE_EQ(m.e_sent_mm(), 2.25);
+    EXPECT_DOUBLE_EQ(m.e_total_mm(), 10);
+    EXPECT_DOUBLE_EQ(m.e_left_mm(), 7.75);
+    // The robot at 2.25 mm at resumed_at: piece 3 (its rest, 0.75 mm) ends at 3 mm, due when
+    // the robot is 0.1 s of path (0.5 mm) short of it: 0.25 mm later at 5 mm/s.
+    ASSERT_TRUE(m.next_due());
+    EXPECT_NEAR(ms_after(resumed_at, *m.next_due()), 50, 1e-3);
+    const auto due = m.take_due(resumed_at + 60s);
+    ASSERT_EQ(due.size(), 8u);
+    EXPECT_DOUBLE_EQ(due[0].e_mm, 0.75);
+    EXPECT_DOUBLE_EQ(due[0].path_end_mm, 3);
+    double fed = 2.25;
+    for (const MeterPiece& p : due) fed += p.e_mm;
+    EXPECT_NEAR(fed, 10, 1e-9);  // nothing lost, nothing repeated
+}
+
+TEST(FeedMeter, ResumingOutsideThePathsFeedIsRefused) {
     FeedMeter m = ten_pieces(SteadyClock::now(), 0.1);
-    EXPECT_THROW(m.skip_fed(2.5, SteadyClock::now()), std::invalid_argument);
+    EXPECT_THROW(m.skip_fed(-0.5, SteadyClock::now()), std::invalid_argument);
     EXPECT_THROW(m.skip_fed(11, SteadyClock::now()), std::invalid_argument);
     FeedMeter nothing_fed = ten_pieces(SteadyClock::now(), 0.1);
     nothing_fed.skip_fed(0, SteadyClock::now());
