@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <random>
 #include <thread>
@@ -114,6 +117,53 @@ TEST_F(MarlinLinkTest, TenThousandLinesWithOnePercentCorruptionRunExactlyOnceInO
     EXPECT_EQ(executed_job(), job);
     EXPECT_GE(link_.stats().resend_requests, 90u);
     EXPECT_EQ(mock_->rx_bytes_dropped(), 0u);
+}
+
+// Marlin 1.1.9's receive limits (BUFSIZE 4, a 128-byte RX ring that loses what overflows it):
+// the widest window the cell config allows, lines near the 96-byte limit, and moves that hold
+// the board's queue, so the host always has more to send than the board can take.
+TEST_F(MarlinLinkTest, AFloodAtTheWidestWindowLosesNothingOnMarlinsLimits) {
+    sim::MockGt2560Options mo;
+    mo.min_extrude_temp_c = 0;
+    MarlinLinkConfig lc;
+    lc.protocol.window_lines = 3;   // the most extruder.link allows (BUFSIZE 4 - 1)
+    lc.protocol.window_bytes = 120;  // likewise, under the 128-byte ring
+    ASSERT_EQ(mo.rx_buffer_bytes, 128);
+    ASSERT_EQ(mo.command_buffer_lines, 4);
+    start(mo, lc);
+    std::vector<std::string> job;
+    for (int i = 0; i < 600; ++i)
+        job.push_back(i % 3 == 0 ? "G1 E0.01 F600"
+                                 : "M117 " + std::string(70, static_cast<char>('a' + i % 26)));
+    const CommandOutcome out = finish(link_.submit(job), 120s);
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+    EXPECT_EQ(executed_job(), job);
+    EXPECT_EQ(mock_->rx_bytes_dropped(), 0u);
+    EXPECT_EQ(link_.stats().resend_requests, 0u);
+}
+
+// The same mock does lose bytes past its ring: a host that writes without waiting for ok.
+TEST_F(MarlinLinkTest, TheMocksRingLosesWhatOverflowsIt) {
+    sim::MockGt2560Options mo;
+    mo.link_path = (dir_ / "ttyGT2560").string();
+    mo.bootloader_s = 0.01;
+    mock_ = std::make_unique<sim::MockGt2560>(mo);
+    const int fd = ::open(mock_->port_path().c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    ASSERT_GE(fd, 0);
+    std::string heard;  // the open reset the board: wait for its boot
+    ASSERT_TRUE(eventually([&] {
+        char buf[256];
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n > 0) heard.append(buf, static_cast<std::size_t>(n));
+        return heard.find("start\n") != std::string::npos;
+    }, 5s)) << heard;
+    // Four dwells fill BUFSIZE and keep it full for seconds; the lines after them wait in the ring.
+    std::string burst = "G4 P3000\nG4 P3000\nG4 P3000\nG4 P3000\n";
+    for (int i = 0; i < 8; ++i) burst += "M117 " + std::string(40, 'x') + "\n";
+    ASSERT_EQ(::write(fd, burst.data(), burst.size()), static_cast<ssize_t>(burst.size()));
+    EXPECT_TRUE(eventually([&] { return mock_->rx_bytes_dropped() > 0; }, 5s));
+    EXPECT_LE(mock_->rx_bytes_dropped(), burst.size() - 128);
+    ::close(fd);
 }
 
 TEST_F(MarlinLinkTest, ResendWithoutOkIsDetectedAndHandled) {
