@@ -25,6 +25,7 @@ SimulationConfig load_simulation_config(config::Section s) {
     c.heater_loss_w_per_k = s.number("heater_loss_w_per_k", c.heater_loss_w_per_k, 0, 100, true);
     c.heat_capacity_j_per_k = s.number("heat_capacity_j_per_k", c.heat_capacity_j_per_k, 0, 10'000, true);
     c.ambient_c = s.number("ambient_c", c.ambient_c, -40, 80);
+    c.board_emergency_parser = s.get_or("board_emergency_parser", c.board_emergency_parser);
     c.main_module = s.get_or<std::string>("main_module", c.main_module);
     c.external_devices = s.choice("devices", "in_process", {"in_process", "external"}) == "external";
     c.external_board = s.choice("board", "mock", {"mock", "external"}) == "external";

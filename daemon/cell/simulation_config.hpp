@@ -12,6 +12,8 @@
 //     heater_loss_w_per_k: 0.12        # cartridge at full duty, the loss to the air, the
 //     heat_capacity_j_per_k: 5         # block's heat capacity (time constant C/k = 42 s) and
 //     ambient_c: 25                    # the air; the mock board uses hotend_tau_s instead
+//     board_emergency_parser: true     # the mock board's firmware is built with EMERGENCY_PARSER,
+//                                      # as the cell's should be; false: stock Marlin 1.1.9
 //     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
 //     devices: in_process   # or external: fibrecell-simcell and mock-gt2560 run as their own
 //                           # processes at the addresses of the rws:, robot_io: and extruder: sections
@@ -34,6 +36,7 @@ struct SimulationConfig {
     double heater_loss_w_per_k = 0.12;
     double heat_capacity_j_per_k = 5;
     double ambient_c = 25;
+    bool board_emergency_parser = true;
     std::string main_module;
     bool external_devices = false;  // devices: external
     bool external_board = false;    // board: external (also true with devices: external)

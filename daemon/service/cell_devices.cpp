@@ -24,6 +24,7 @@ std::unique_ptr<drivers::sim::MockGt2560> make_mock_board(const CellConfig& cell
     o.hotend_tau_s = cell.simulation.hotend_tau_s;
     o.residency_s = cell.simulation.residency_s;
     o.bootloader_s = 0.5;
+    o.emergency_parser = cell.simulation.board_emergency_parser;
     o.link_path = link.string();
     o.max_log = 10'000;  // observed by nobody in the service: bounded so that job after job
                          // does not grow the service's memory

@@ -26,7 +26,9 @@ struct MockGt2560Options {
     double bootloader_s = 1.0;        // silence after a reset before `start`
     bool reset_on_open = true;        // DTR auto-reset: every open of the port reboots the board
     bool resend_ok = true;            // bugfix-2.1.x prints ok after Resend; older builds do not
-    bool emergency_parser = true;     // M108/M112/M410 act as bytes arrive
+    // Stock Marlin 1.1.9 for the GT2560: M108/M112/M410 act only when their line is read (not
+    // while a command blocks). true: a build with EMERGENCY_PARSER, where they act on arrival.
+    bool emergency_parser = false;
     bool advanced_ok = false;         // ok N<n> P<planner free> B<buffer free>
     int rx_buffer_bytes = 128;
     int command_buffer_lines = 4;     // BUFSIZE

@@ -74,7 +74,7 @@ std::vector<std::string> numbered_job(int n) {
 }  // namespace
 
 TEST_F(MarlinLinkTest, HandshakeResetsNumberingAndReadsCapabilities) {
-    start();
+    start({.emergency_parser = true});  // a build with EMERGENCY_PARSER, as the cell's should be
     EXPECT_EQ(link_.state(), DeviceState::active);
     const auto log = mock_->executed();
     ASSERT_GE(log.size(), 3u);
@@ -87,7 +87,7 @@ TEST_F(MarlinLinkTest, HandshakeResetsNumberingAndReadsCapabilities) {
 }
 
 TEST_F(MarlinLinkTest, ABoardWithoutTheEmergencyParserIsToldApart) {
-    start({.emergency_parser = false});  // as stock Marlin 1.1.9 is built for the GT2560
+    start();  // the mock's default: stock Marlin 1.1.9 as built for the GT2560
     EXPECT_EQ(link_.state(), DeviceState::active);
     EXPECT_FALSE(link_.capabilities().at("EMERGENCY_PARSER"));
     EXPECT_FALSE(link_.emergency_parser());
@@ -239,6 +239,7 @@ TEST_F(MarlinLinkTest, LongHeatingWaitDoesNotTimeOut) {
 TEST_F(MarlinLinkTest, AbortBreaksAHeatingWaitPromptly) {
     sim::MockGt2560Options mo;
     mo.time_scale = 50;  // the full wait would take several real seconds
+    mo.emergency_parser = true;
     start(mo);
     auto job = link_.submit({"M109 T1 S250", "G1 E5 F300", "M117 after"});
     ASSERT_TRUE(eventually([&] { return mock_->temperature_c(1) > 40.0; }));
@@ -254,6 +255,21 @@ TEST_F(MarlinLinkTest, AbortBreaksAHeatingWaitPromptly) {
     EXPECT_EQ(j[0], "M109 T1 S250");
     EXPECT_LT(mock_->temperature_c(1), 200.0);
     EXPECT_TRUE(finish(link_.submit({"M105"}), 5s).ok());  // accounting intact
+}
+
+// Stock 1.1.9 has no emergency parser: M108 is read only once the M109 it should break has
+// finished heating (why the link warns about such a board). The wait's end is its log entry.
+TEST_F(MarlinLinkTest, WithoutTheEmergencyParserAnAbortWaitsForTheHeatingToEnd) {
+    sim::MockGt2560Options mo;
+    mo.time_scale = 50;
+    start(mo);
+    auto job = link_.submit({"M109 T1 S250", "G1 E5 F300", "M117 after"});
+    ASSERT_TRUE(eventually([&] { return mock_->temperature_c(1) > 40.0; }));
+    link_.abort();
+    EXPECT_EQ(finish(std::move(job), 2s).failure, LinkFailure::aborted);  // the host stops waiting
+    ASSERT_TRUE(eventually([&] { return !executed_job().empty(); }, 30s));
+    EXPECT_GE(mock_->temperature_c(1), 249.0);  // the wait ran to its end
+    EXPECT_EQ(executed_job(), std::vector<std::string>{"M109 T1 S250"});  // and nothing after it
 }
 
 TEST_F(MarlinLinkTest, CutAfterM400FiresOnlyWhenTheFeedHasFinished) {
@@ -368,6 +384,7 @@ TEST_F(MarlinLinkTest, GarbledResendNumberIsALinkError) {
 TEST_F(MarlinLinkTest, EmergencyStopKillsTheFirmware) {
     sim::MockGt2560Options mo;
     mo.time_scale = 10;
+    mo.emergency_parser = true;  // at once, inside the heating wait
     start(mo);
     auto job = link_.submit({"M109 T0 S200", "M117 never"});
     ASSERT_TRUE(eventually([&] { return mock_->temperature_c(0) > 25.0; }));

@@ -24,7 +24,8 @@ class ExternalCell {
         const std::string scale = std::to_string(time_scale);
         std::vector<std::string> board_args{"--link", tty_.string(), "--time-scale", scale,
                                             "--bootloader-s", "0.2", "--hotend-tau-s", "2",
-                                            "--residency-s", "0.5", "--log", board_log_.string()};
+                                            "--residency-s", "0.5", "--log", board_log_.string(),
+                                            "--emergency-parser"};  // as the cell's firmware
         if (!board_control) board_args.insert(board_args.begin(), "--daemon");
         board_ = std::make_unique<ChildProcess>(bin + "/tools/mock-gt2560", board_args,
                                                 dir / "mock.log", board_control);

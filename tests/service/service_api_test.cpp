@@ -195,6 +195,7 @@ TEST_F(ServiceTest, EstopStopsTheBoardAndTheRobotAndAbortsTheJob) {
     auto c = client();
     const std::int64_t id = submit_bar(c, true);
     ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing");
+    EXPECT_TRUE(c.call("cell.status")["board"].value("emergency_parser", false));
     const json answer = c.call("cell.estop");
     EXPECT_THAT(answer.value("note", ""), HasSubstr("not a safety function"));
     EXPECT_EQ(wait_for_state(c, id, "aborted").value("state", ""), "aborted");
@@ -207,6 +208,19 @@ TEST_F(ServiceTest, EstopStopsTheBoardAndTheRobotAndAbortsTheJob) {
     EXPECT_TRUE(cell["job"].is_null()) << cell.dump();
     EXPECT_NE(cell["board"].value("state", ""), "active") << cell.dump();
     EXPECT_TRUE(service_->running());
+}
+
+// The simulated cell's board has the emergency parser the cell's firmware should have (the
+// E-stop test sees it); with stock Marlin 1.1.9's (none) the service says so at connect and in
+// cell.status.
+TEST_F(ServiceTest, ABoardWithoutTheEmergencyParserIsShownAsSuch) {
+    start_service(write_config("", 50, ", board_emergency_parser: false"));
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing");
+    EXPECT_FALSE(c.call("cell.status")["board"].value("emergency_parser", true));
+    EXPECT_NE(service_->log().find("extruder.no_emergency_parser"), std::string::npos);
+    EXPECT_THAT(c.call("cell.estop").value("note", ""), HasSubstr("no emergency parser"));
 }
 
 TEST_F(ServiceTest, APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst) {

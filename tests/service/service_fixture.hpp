@@ -70,14 +70,16 @@ class ServiceTest : public ::testing::Test {
     fs::path state_dir() const { return dir_ / "state"; }
 
     // The cell YAML of the tests; `extra` is appended (more sections or keys).
-    fs::path write_config(const std::string& extra = "", double time_scale = 50) const {
+    // `simulation_extra`: more keys of the simulation section (", key: value").
+    fs::path write_config(const std::string& extra = "", double time_scale = 50,
+                          const std::string& simulation_extra = "") const {
         const fs::path p = dir_ / "cell.yaml";
         std::ofstream(p) << "name: test-cell\n"
                          << "log_level: info\n"
                          << "state_dir: " << state_dir().string() << "\n"
                          << "simulated: true\n"
                          << "simulation: {time_scale: " << time_scale
-                         << ", hotend_tau_s: 2, residency_s: 0.5}\n"
+                         << ", hotend_tau_s: 2, residency_s: 0.5" << simulation_extra << "}\n"
                          << "robot_io: {stable_reads: 1}\n"
                          << "api:\n  socket: " << socket().string() << "\n"
                          << "  max_request_bytes: 4194304\n"

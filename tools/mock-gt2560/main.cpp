@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     app.add_option("--time-scale", o.time_scale, "simulated seconds per real second")->check(CLI::PositiveNumber);
     app.add_option("--bootloader-s", o.bootloader_s, "simulated boot delay before 'start'");
     app.add_flag("!--no-resend-ok", o.resend_ok, "no ok after Resend (older Marlin)");
-    app.add_flag("!--no-emergency-parser", o.emergency_parser, "M108/M112/M410 only when read");
+    app.add_flag("--emergency-parser", o.emergency_parser,
+                 "M108/M112/M410 act as they arrive (a build with EMERGENCY_PARSER; stock 1.1.9: only when read)");
     app.add_flag("--advanced-ok", o.advanced_ok, "ok N<line> P<planner> B<buffer>");
     app.add_option("--hotend-tau-s", o.hotend_tau_s, "hotend time constant (simulated s)");
     app.add_option("--residency-s", o.residency_s, "M109 residency (simulated s)");
