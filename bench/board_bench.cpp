@@ -7,7 +7,7 @@
 //   build/release/bench/board_bench [BUILD_DIR]    BUILD_DIR has tools/gt2560-avr and the firmware
 #include "drivers/marlin/marlin_link.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
-#include "tests/support/piped_process.hpp"
+#include "gt2560_avr_process.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -51,53 +51,13 @@ void measure(const char* board, const std::string& port) {
     link.deactivate();
 }
 
-double sim_time_of(const std::string& status) {
-    const auto at = status.find("\"sim_time_s\":");
-    return at == std::string::npos ? -1 : std::strtod(status.c_str() + at + 13, nullptr);
-}
-
-// The simulator's clock against the host's: a status answer's sim_time_s taken at the middle of
-// its round trip (off by at most half of it, printed).
-struct ClockMap {
-    double offset_s = 0;  // host seconds (since t_ref) - simulated seconds
-    double half_rtt_ms = 0;
-};
-
-ClockMap map_clock(fibrecell::test::PipedProcess& board, Clock::time_point t_ref) {
-    const auto q0 = Clock::now();
-    board.write_line("status");
-    const auto st = board.read_line_starting("status ", std::chrono::seconds(10));
-    const auto q1 = Clock::now();
-    const double mid = std::chrono::duration<double>(q0 - t_ref).count() +
-                       std::chrono::duration<double>(q1 - q0).count() / 2;
-    return {mid - sim_time_of(st.value_or("")),
-            std::chrono::duration<double, std::milli>(q1 - q0).count() / 2};
-}
-
-// The first `e1_step 1` edge in the lines added to the edge log since the last call.
-std::optional<double> next_step_edge(std::ifstream& edges) {
-    std::optional<double> first;
-    std::string line;
-    edges.clear();
-    while (std::getline(edges, line)) {
-        double t = 0;
-        char pin[32] = {};
-        int level = 0;
-        if (std::sscanf(line.c_str(), "%lf %31s %d", &t, pin, &level) == 3 &&
-            std::string(pin) == "e1_step" && level == 1 && !first)
-            first = t;
-    }
-    return first;
-}
-
 // Through gt2560-avr: a feed command given to the link -> its first byte on the wire -> the
 // firmware's first E1 step pulse, per move (the CCF hotend hot, one 0.5 mm move at 5 mm/s at a
 // time, the link idle before each).
-void measure_step_start(fibrecell::test::PipedProcess& board, const std::string& port,
-                        const fs::path& edge_log) {
+void measure_step_start(fibrecell::bench::Gt2560AvrProcess& board) {
     marlin::MarlinLink link;
     marlin::MarlinLinkConfig lc;
-    lc.serial.device = port;
+    lc.serial.device = board.port();
     const auto t_ref = Clock::now();
     std::atomic<double> wire_s{-1};
     link.on_bytes_written([&] {
@@ -110,18 +70,20 @@ void measure_step_start(fibrecell::test::PipedProcess& board, const std::string&
         std::printf("gt2560-avr: heating failed\n");
         return;
     }
-    std::ifstream edges(edge_log);
-    next_step_edge(edges);  // what came before
+    board.status();
+    board.new_edges();  // what came before
     std::vector<double> to_wire, to_step;
     double worst_half_rtt = 0;
     for (int i = 0; i < 40; ++i) {
-        const ClockMap map = map_clock(board, t_ref);
+        const auto map = board.map_clock(t_ref);
         worst_half_rtt = std::max(worst_half_rtt, map.half_rtt_ms);
         wire_s = -1;
         const double t0 = std::chrono::duration<double>(Clock::now() - t_ref).count();
         link.submit({"G1 E0.5 F300", "M400"}).get();
-        map_clock(board, t_ref);  // flushes the edge log
-        const auto step = next_step_edge(edges);
+        board.status();  // flushes the edge log
+        std::optional<double> step;
+        for (const auto& e : board.new_edges())
+            if (!step && e.pin == "e1_step" && e.level == 1) step = e.t_s;
         if (!step || wire_s < 0) continue;
         to_wire.push_back(1e3 * (wire_s - t0));
         to_step.push_back(1e3 * (*step + map.offset_s - t0));
@@ -152,22 +114,16 @@ int main(int argc, char** argv) {
         sim::MockGt2560 mock(mo);
         measure("mock-gt2560", mock.port_path());
     }
-    const std::string tool = build + "/tools/gt2560-avr";
-    const std::string firmware = build + "/tests/firmware/gt2560-test-firmware.elf";
-    if (!fs::exists(tool) || !fs::exists(firmware)) {
-        std::printf("gt2560-avr: not built in %s (libsimavr-dev, gcc-avr)\n", build.c_str());
-    } else {
-        fibrecell::test::PipedProcess board(tool, {firmware, "--link", (dir / "ttyAvr").string(),
-                                                   "--edge-log", (dir / "edges.log").string()});
-        if (board.read_line_starting("port ", std::chrono::seconds(20))) {
-            measure("gt2560-avr (test fw)", (dir / "ttyAvr").string());
-            measure_step_start(board, (dir / "ttyAvr").string(), dir / "edges.log");
+    {
+        fibrecell::bench::Gt2560AvrProcess board(build, dir);
+        if (board.port().empty()) {
+            std::printf("gt2560-avr: not built in %s (libsimavr-dev, gcc-avr), or it did not start\n",
+                        build.c_str());
+        } else {
+            measure("gt2560-avr (test fw)", board.port());
+            measure_step_start(board);
+            std::printf("gt2560-avr status: %.300s\n", board.status().c_str());
         }
-        board.write_line("status");
-        if (const auto st = board.read_line_starting("status ", std::chrono::seconds(10)))
-            std::printf("gt2560-avr status: %.300s\n", st->c_str());
-        board.write_line("quit");
-        board.wait(std::chrono::seconds(10));
     }
     fs::remove_all(dir);
     return 0;

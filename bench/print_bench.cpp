@@ -7,12 +7,17 @@
 // service's latency: the error at time scale s is about s times the real cell's, so run at 1 for
 // the cell's figure (slow) and higher for a quick look.
 //
-//   build/release/bench/print_bench [time_scale=2] [fibre_lines=12]
+// With --avr BUILD_DIR the board is gt2560-avr running the test firmware instead of the mock:
+// real time (time scale 1), the cutter's D11 rising edge from its edge log, its clock mapped to
+// the host's by status round trips during the print.
+//
+//   build/release/bench/print_bench [time_scale=2] [fibre_lines=12] [--avr BUILD_DIR]
 #include "daemon/print/print_session.hpp"
 #include "drivers/abb/rapid/rapid_writer.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
+#include "gt2560_avr_process.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -21,6 +26,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 using namespace fibrecell;
@@ -53,11 +59,39 @@ double nearest_rank(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
 }
 
+// The host times at which the cutter closed, from gt2560-avr's D11 edges: each edge's simulated
+// time mapped with the clock map taken nearest to it.
+std::vector<std::chrono::steady_clock::time_point> avr_cutter_times(
+    bench::Gt2560AvrProcess& board, std::chrono::steady_clock::time_point t_ref,
+    const std::vector<std::pair<double, double>>& maps /* (simulated s, offset s) */) {
+    std::vector<std::chrono::steady_clock::time_point> out;
+    board.status();
+    for (const auto& e : board.new_edges()) {
+        if (e.pin != "d11" || e.level != 1 || maps.empty()) continue;
+        const auto nearest = std::min_element(maps.begin(), maps.end(), [&](const auto& a, const auto& b) {
+            return std::abs(a.first - e.t_s) < std::abs(b.first - e.t_s);
+        });
+        out.push_back(t_ref + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(e.t_s + nearest->second)));
+    }
+    return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    const double scale = argc > 1 ? std::atof(argv[1]) : 2.0;
-    const int lines = argc > 2 ? std::atoi(argv[2]) : 12;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    std::optional<std::string> avr_build;
+    if (const auto at = std::find(args.begin(), args.end(), "--avr"); at != args.end()) {
+        if (at + 1 == args.end()) {
+            std::fprintf(stderr, "print_bench: --avr needs the build folder\n");
+            return 2;
+        }
+        avr_build = *(at + 1);
+        args.erase(at, at + 2);
+    }
+    const double scale = avr_build ? 1.0 : args.size() > 0 ? std::atof(args[0].c_str()) : 2.0;
+    const int lines = args.size() > 1 ? std::atoi(args[1].c_str()) : 12;
     spdlog::set_level(spdlog::level::warn);
     const auto dir = std::filesystem::temp_directory_path() / "fibrecell-print-bench";
     std::filesystem::create_directories(dir);
@@ -73,12 +107,21 @@ int main(int argc, char** argv) {
     mo.residency_s = 0.2;
     mo.link_path = (dir / "ttyGT2560").string();
     drivers::sim::MockGt2560 mock(mo);
+    std::optional<bench::Gt2560AvrProcess> avr;
+    if (avr_build) {
+        avr.emplace(*avr_build, dir);
+        if (avr->port().empty()) {
+            std::fprintf(stderr, "print_bench: gt2560-avr is not built in %s or did not start\n",
+                         avr_build->c_str());
+            return 1;
+        }
+    }
 
     std::mutex mu;
     daemon::print::PrintSession* session = nullptr;
     drivers::marlin::MarlinLink board;
     drivers::marlin::MarlinLinkConfig lc;
-    lc.serial.device = mock.port_path();
+    lc.serial.device = avr ? avr->port() : mock.port_path();
     board.configure(lc);
     board.on_temperature([&](const auto& r) {
         std::lock_guard lock(mu);
@@ -118,11 +161,24 @@ int main(int argc, char** argv) {
         std::lock_guard lock(mu);
         session = s.get();
     }
-    std::printf("print_bench: %d fibre lines of 50 mm at 5 mm/s, time scale %.1f, %zu events\n",
-                lines, scale, program.events.size());
+    std::printf("print_bench: %d fibre lines of 50 mm at 5 mm/s, time scale %.1f, %zu events, board %s\n",
+                lines, scale, program.events.size(), avr ? "gt2560-avr (test firmware)" : "mock-gt2560");
     const auto t0 = std::chrono::steady_clock::now();
     s->start();
-    const auto phase = s->wait_until_done(std::chrono::hours(2), 50ms);
+    // gt2560-avr's clock against the host's, every half second of the print.
+    std::vector<std::pair<double, double>> maps;
+    double worst_half_rtt_ms = 0;
+    daemon::print::PrintPhase phase = s->poll().phase;
+    for (;;) {
+        phase = s->wait_until_done(avr ? 500ms : std::chrono::hours(2), 50ms);
+        if (phase == daemon::print::PrintPhase::completed || phase == daemon::print::PrintPhase::faulted ||
+            !avr)
+            break;
+        const auto m = avr->map_clock(t0);
+        const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        maps.emplace_back(host_s - m.offset_s, m.offset_s);
+        worst_half_rtt_ms = std::max(worst_half_rtt_ms, m.half_rtt_ms);
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (phase != daemon::print::PrintPhase::completed) {
         std::fprintf(stderr, "print_bench: the print ended %s: %s\n",
@@ -135,13 +191,22 @@ int main(int argc, char** argv) {
     std::vector<const abb::ProgramEvent*> cuts;
     for (const auto& e : program.events)
         if (e.kind == abb::EventKind::cut) cuts.push_back(&e);
+    std::vector<std::chrono::steady_clock::time_point> cutter_on;
+    if (avr) {
+        cutter_on = avr_cutter_times(*avr, t0, maps);
+    } else {
+        for (const auto& p : mock.pin_events())
+            if (p.command.find("S255") != std::string::npos) cutter_on.push_back(mock.wall_at(p.t_s));
+    }
     std::vector<double> errors;
-    for (const auto& p : mock.pin_events()) {
-        if (p.command.find("S255") == std::string::npos || errors.size() >= cuts.size()) continue;
-        const auto at = drivers::sim::sample_at(trajectory, mock.wall_at(p.t_s));
+    for (const auto& t : cutter_on) {
+        if (errors.size() >= cuts.size()) break;
+        const auto at = drivers::sim::sample_at(trajectory, t);
         if (at) errors.push_back((at->tcp_wobj_mm - cuts[errors.size()]->position_mm).norm());
     }
     std::printf("  printed in %.1f s real (%.1f s simulated)\n", wall, wall * scale);
+    if (avr)
+        std::printf("  gt2560-avr clock mapped %zu times, within %.2f ms\n", maps.size(), worst_half_rtt_ms);
     std::printf("  cut position error [mm] over %zu cuts: median %.4f  p99 %.4f  max %.4f"
                 "  (target p99 <= 0.1 at time scale 1)\n",
                 errors.size(), nearest_rank(errors, 0.5), nearest_rank(errors, 0.99),
