@@ -93,22 +93,31 @@ void append_background(std::string& out, const Frame& frame, const TriangleScala
             lo = std::min(lo, v);
             hi = std::max(hi, v);
         }
-    out += "<g class=\"field-map\" stroke-width=\"0.05\">\n";
+    // One path per colour step: 64 steps of the map are more than a preview shows, and a few
+    // dozen elements instead of one per triangle keep the file small and a browser quick.
+    constexpr int steps = 64;
+    std::vector<std::string> step_d(steps);
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
         const double v = scalars.values[f];
         if (!std::isfinite(v)) continue;
-        const std::string colour = viridis_hex(hi > lo ? (v - lo) / (hi - lo) : 0.5);
-        out +=
-            "<polygon class=\"field\" fill=\"" + colour + "\" stroke=\"" + colour + "\" points=\"";
+        const double t = hi > lo ? (v - lo) / (hi - lo) : 0.5;
+        std::string& d = step_d[static_cast<std::size_t>(std::clamp(static_cast<int>(t * steps), 0, steps - 1))];
         for (std::size_t k = 0; k < 3; ++k) {
             const int vertex = mesh.triangles[f][k];
             if (vertex < 0 || static_cast<std::size_t>(vertex) >= mesh.vertices.size())
                 throw std::invalid_argument("preview background triangle " + std::to_string(f) +
                                             " has a vertex index out of range");
-            if (k > 0) out += ' ';
-            append_point(out, frame, mesh.vertices[static_cast<std::size_t>(vertex)]);
+            d += k == 0 ? (d.empty() ? "M" : " M") : " L";
+            append_point(d, frame, mesh.vertices[static_cast<std::size_t>(vertex)]);
         }
-        out += "\"/>\n";
+        d += "Z";
+    }
+    out += "<g class=\"field-map\" stroke-width=\"0.05\">\n";
+    for (int i = 0; i < steps; ++i) {
+        if (step_d[static_cast<std::size_t>(i)].empty()) continue;
+        const std::string colour = viridis_hex((i + 0.5) / steps);
+        out += "<path class=\"field\" fill=\"" + colour + "\" stroke=\"" + colour + "\" d=\"" +
+               step_d[static_cast<std::size_t>(i)] + "\"/>\n";
     }
     out += "</g>\n";
 }

@@ -144,7 +144,13 @@ TEST_F(PlanOutput, PreviewWritesOneSvgPerLayerAndAnIndex) {
         }
         EXPECT_EQ(count(svg, "<path class=\"travel\""), layer.paths.size() - 1);
         EXPECT_EQ(count(svg, "<path class=\"outline\""), 1u);
-        EXPECT_EQ(count(svg, "<polygon class=\"field\""), layer.head == Head::ccf ? 2u : 0u);
+        // The map: one path per colour step (sigma 1 and 3: the two ends of the scale), each
+        // triangle a closed sub-path of three points.
+        EXPECT_EQ(count(svg, "<path class=\"field\""), layer.head == Head::ccf ? 2u : 0u);
+        const auto map_at = svg.find("<g class=\"field-map\"");
+        const std::string map = map_at == std::string::npos ? ""
+                                                            : svg.substr(map_at, svg.find("</g>", map_at) - map_at);
+        EXPECT_EQ(count(map, "Z"), layer.head == Head::ccf ? 2u : 0u);
     }
     EXPECT_TRUE(files.contains("layer_0001.svg"));
     const std::string index = files["index.html"];
