@@ -53,8 +53,12 @@ void FeedMeter::skip_fed(double e_mm, SteadyClock::time_point now) {
         MeterPiece& rest = pieces_[k];
         const double share = part / rest.e_mm;
         at_mm += share * (rest.path_end_mm - at_mm);
-        rest.e_mm = round_e(rest.e_mm - part);
-        fed_inside_piece_mm_ = part;
+        if (round_e(rest.e_mm - part) > 0) {
+            rest.e_mm = round_e(rest.e_mm - part);
+            fed_inside_piece_mm_ = part;
+        } else {
+            ++k;  // fed but for less than the G-code's resolution
+        }
     }
     next_ = k;
     robot_start_ = now - std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(
