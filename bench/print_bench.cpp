@@ -2,10 +2,11 @@
 // the chunks, the mock GT2560 on a pseudo-terminal, and the service's real links and sync engine
 // printing straight 50 mm fibre lines at 5 mm/s. For every cut: where the robot's TCP was (its
 // recorded trajectory) when the board switched the cutter on, against the cut point, as path
-// length. Also the engine's event -> first board command latency per kind. The simulated robot
-// runs `time_scale` times faster than real time, and so does the robot's travel during the
-// service's latency: the error at time scale s is about s times the real cell's, so run at 1 for
-// the cell's figure (slow) and higher for a quick look.
+// length; for every fibre path, the robot arriving at its start (where its fibre_start event
+// fires) -> the board starting the thread feed. Also the engine's event -> first board command
+// latency per kind. The simulated robot runs `time_scale` times faster than real time, and so
+// does the robot's travel during the service's latency: the error at time scale s is about s
+// times the real cell's, so run at 1 for the cell's figure (slow) and higher for a quick look.
 //
 // With --avr BUILD_DIR the board is gt2560-avr running the test firmware instead of the mock:
 // real time (time scale 1), the cutter's D11 rising edge from its edge log, its clock mapped to
@@ -59,20 +60,48 @@ double nearest_rank(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
 }
 
-// The host times at which the cutter closed, from gt2560-avr's D11 edges: each edge's simulated
-// time mapped with the clock map taken nearest to it.
-std::vector<std::chrono::steady_clock::time_point> avr_cutter_times(
-    bench::Gt2560AvrProcess& board, std::chrono::steady_clock::time_point t_ref,
-    const std::vector<std::pair<double, double>>& maps /* (simulated s, offset s) */) {
-    std::vector<std::chrono::steady_clock::time_point> out;
-    board.status();
-    for (const auto& e : board.new_edges()) {
-        if (e.pin != "d11" || e.level != 1 || maps.empty()) continue;
+using SteadyTime = std::chrono::steady_clock::time_point;
+
+// When the board's pins did what the cut and the feed ask for, on the host's clock.
+struct PinTimes {
+    std::vector<SteadyTime> cutter_on;   // the cutter closing
+    std::vector<SteadyTime> feed_start;  // a fibre feed move starting (E1 steps / a G1 E move)
+};
+
+// From gt2560-avr's edge log: D11 rising edges and E1 steps after a pause of over 50 ms (a new
+// move), each simulated time mapped with the clock map taken nearest to it.
+PinTimes avr_pin_times(bench::Gt2560AvrProcess& board, SteadyTime t_ref,
+                       const std::vector<std::pair<double, double>>& maps /* (simulated s, offset s) */) {
+    PinTimes out;
+    if (maps.empty()) return out;
+    const auto host = [&](double sim_s) {
         const auto nearest = std::min_element(maps.begin(), maps.end(), [&](const auto& a, const auto& b) {
-            return std::abs(a.first - e.t_s) < std::abs(b.first - e.t_s);
+            return std::abs(a.first - sim_s) < std::abs(b.first - sim_s);
         });
-        out.push_back(t_ref + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                  std::chrono::duration<double>(e.t_s + nearest->second)));
+        return t_ref + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(sim_s + nearest->second));
+    };
+    board.status();
+    double last_step = -1;
+    for (const auto& e : board.new_edges()) {
+        if (e.pin == "d11" && e.level == 1) out.cutter_on.push_back(host(e.t_s));
+        if (e.pin != "e1_step" || e.level != 1) continue;
+        if (last_step < 0 || e.t_s - last_step > 0.05) out.feed_start.push_back(host(e.t_s));
+        last_step = e.t_s;
+    }
+    return out;
+}
+
+// From the mock's logs: its M42 S255 pin events and the start of each E move on tool 1.
+PinTimes mock_pin_times(const drivers::sim::MockGt2560& mock) {
+    PinTimes out;
+    for (const auto& p : mock.pin_events())
+        if (p.command.find("S255") != std::string::npos) out.cutter_on.push_back(mock.wall_at(p.t_s));
+    bool ccf = false;
+    for (const auto& c : mock.executed()) {
+        if (c.text == "T0" || c.text == "T1") ccf = c.text == "T1";
+        if (ccf && c.text.rfind("G1 E", 0) == 0 && c.move_start_s)
+            out.feed_start.push_back(mock.wall_at(*c.move_start_s));
     }
     return out;
 }
@@ -191,18 +220,26 @@ int main(int argc, char** argv) {
     std::vector<const abb::ProgramEvent*> cuts;
     for (const auto& e : program.events)
         if (e.kind == abb::EventKind::cut) cuts.push_back(&e);
-    std::vector<std::chrono::steady_clock::time_point> cutter_on;
-    if (avr) {
-        cutter_on = avr_cutter_times(*avr, t0, maps);
-    } else {
-        for (const auto& p : mock.pin_events())
-            if (p.command.find("S255") != std::string::npos) cutter_on.push_back(mock.wall_at(p.t_s));
-    }
+    const PinTimes pins = avr ? avr_pin_times(*avr, t0, maps) : mock_pin_times(mock);
     std::vector<double> errors;
-    for (const auto& t : cutter_on) {
+    for (const auto& t : pins.cutter_on) {
         if (errors.size() >= cuts.size()) break;
         const auto at = drivers::sim::sample_at(trajectory, t);
         if (at) errors.push_back((at->tcp_wobj_mm - cuts[errors.size()]->position_mm).norm());
+    }
+    // A fibre path's start: the robot arrives at its fibre_start (the event fires there and the
+    // robot waits for the release) -> the board starts the thread feed.
+    std::vector<double> to_feed_ms;
+    std::size_t sample = 0, feed = 0;
+    for (const auto& e : program.events) {
+        if (e.kind != abb::EventKind::fibre_start) continue;
+        while (sample < trajectory.size() && (trajectory[sample].tcp_wobj_mm - e.position_mm).norm() > 0.05)
+            ++sample;
+        if (sample == trajectory.size()) break;
+        const SteadyTime arrived = trajectory[sample].wall;
+        while (feed < pins.feed_start.size() && pins.feed_start[feed] < arrived) ++feed;
+        if (feed == pins.feed_start.size()) break;
+        to_feed_ms.push_back(std::chrono::duration<double, std::milli>(pins.feed_start[feed] - arrived).count());
     }
     std::printf("  printed in %.1f s real (%.1f s simulated)\n", wall, wall * scale);
     if (avr)
@@ -211,6 +248,10 @@ int main(int argc, char** argv) {
                 "  (target p99 <= 0.1 at time scale 1)\n",
                 errors.size(), nearest_rank(errors, 0.5), nearest_rank(errors, 0.99),
                 errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end()));
+    std::printf("  robot at a fibre path's start -> the board's thread feed starting [ms] over %zu paths: "
+                "median %.2f  p99 %.2f  max %.2f\n",
+                to_feed_ms.size(), nearest_rank(to_feed_ms, 0.5), nearest_rank(to_feed_ms, 0.99),
+                to_feed_ms.empty() ? 0.0 : *std::max_element(to_feed_ms.begin(), to_feed_ms.end()));
     std::printf("  engine, counter change -> first command submitted [ms]:\n");
     for (const auto& t : status.sync.stats.timing)
         std::printf("    %-12s n=%-4zu median %.3f  p99 %.3f  max %.3f\n",
