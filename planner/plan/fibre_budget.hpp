@@ -1,8 +1,8 @@
 #pragma once
 // Meeting a fibre budget on one CCF layer (planner.fibre_budget): a strategy's density knob (the
-// field strategy's density scale, the baseline's zigzag density) is searched until the layer's
-// fibre is within 5% of the target, or as near as the layer allows (a layer holds only so much
-// fibre W apart; a sparse one needs none at all).
+// field strategy's contrast p and isocurve count, the baseline's zigzag density) is searched until
+// the layer's fibre is within 5% of the target, or as near as the layer allows (a layer holds only
+// so much fibre W apart; a sparse one needs none at all).
 
 #include <cmath>
 #include <utility>

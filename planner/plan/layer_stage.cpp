@@ -37,6 +37,7 @@ struct LayerWork {
     FibreQualitySums quality;
     std::vector<BoundaryFibreStats> boundaries;  // per boundary_fibres region
     std::optional<BudgetFit> budget;             // when planner.fibre_budget applied to the layer
+    std::optional<double> budget_p;              // the contrast p the field strategy met it at
 };
 
 double fibre_length(const std::vector<Toolpath>& paths) {
@@ -44,6 +45,22 @@ double fibre_length(const std::vector<Toolpath>& paths) {
     for (const Toolpath& p : paths) mm += path_length(p);
     return mm;
 }
+
+// The field strategy's settings at a fibre budget's density knob (1: the job's own). Below 1 it
+// lays fewer isocurves at the job's contrast p. From 1 to 2 it lowers p to 0, as the paper
+// adjusted its parameters to compare strategies at the same fibre: the low-stress areas fill in
+// while the fibre stays densest where sigma is highest and runs unbroken. Beyond 2 (p = 0) it lays
+// more isocurves, cut back to W where they crowd (short pieces are lost to the cutter).
+struct FieldDensity {
+    double p;
+    double density_scale;
+};
+FieldDensity field_density(double knob, double job_p) {
+    if (knob <= 1) return {job_p, knob};
+    if (knob <= 2) return {job_p * (2 - knob), 1};
+    return {0, knob / 2};
+}
+constexpr double field_knob_max = 32;  // p = 0 and 16 times the isocurves
 
 // The fibre [mm] planner.fibre_budget asks of CCF layer `i` (0: no budget, or nothing to meet).
 double budget_target_mm(const FibreBudget& budget, const LayerOutline& outline, int ccf_ordinal,
@@ -164,9 +181,11 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             for (const SelectedFaces& faces : boundary_fibre_faces)
                 region_edges.push_back(selected_outline_edges(out.sections[i], faces));
             const auto edges = edges_of_any(region_edges);
-            const auto fibre_at = [&](double density_scale) {
+            const auto fibre_at = [&](double knob) {
+                const FieldDensity d = field_density(knob, job.planner.p);
                 FibreLayerOptions o = fibre;
-                o.density_scale = density_scale;
+                o.field.p = d.p;
+                o.density_scale = d.density_scale;
                 return plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
                                         field.v_defined, edges, o);
             };
@@ -175,9 +194,23 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             FibreLayer r;
             if (target > 0) {
                 w.budget.emplace();
-                r = fit_budget(
-                    fibre_at, [](const FibreLayer& l) { return fibre_length(l.paths); }, target,
-                    1.0 / 16, 16.0, 1.0, *w.budget);
+                const auto length = [](const FibreLayer& l) { return fibre_length(l.paths); };
+                // The contrast first (the fibre need not rise steadily with the knob past 2:
+                // curves cut where they crowd can lose more to the cutter than they add).
+                r = fit_budget(fibre_at, length, target, 1.0 / 16, 2.0, 1.0, *w.budget);
+                if (!w.budget->met() && w.budget->laid_mm < target) {
+                    BudgetFit more;
+                    FibreLayer denser =
+                        fit_budget(fibre_at, length, target, 2.0, field_knob_max, 2.0, more);
+                    more.tries += w.budget->tries;
+                    if (std::abs(more.laid_mm - target) < std::abs(w.budget->laid_mm - target)) {
+                        r = std::move(denser);
+                        *w.budget = more;
+                    } else {
+                        w.budget->tries = more.tries;
+                    }
+                }
+                w.budget_p = field_density(w.budget->knob, job.planner.p).p;
             } else {
                 r = fibre_at(1.0);
             }
@@ -229,6 +262,12 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             st.budget.target_mm += fit.target_mm;
             const double error = std::abs(fit.laid_mm - fit.target_mm) / fit.target_mm;
             st.budget.worst_error = std::max(st.budget.worst_error, error);
+            if (w.budget_p) {
+                const bool first = st.budget.p_layers++ == 0;
+                const double p = *w.budget_p;
+                st.budget.lowest_p = first ? p : std::min(st.budget.lowest_p, p);
+                st.budget.highest_p = first ? p : std::max(st.budget.highest_p, p);
+            }
             if (!fit.met())
                 out.warnings.push_back(
                     "layer at z = " + std::to_string(w.layer.z) + ": fibre budget " +

@@ -34,6 +34,9 @@ struct LayerStageStats {
         int layers = 0, layers_met = 0;  // within BudgetFit::tolerance of their target
         double target_mm = 0;            // summed over those layers
         double worst_error = 0;          // largest |laid - target| / target of a layer
+        // The field strategy's contrast p over those layers (planner.p lowered to meet more).
+        int p_layers = 0;
+        double lowest_p = 0, highest_p = 0;
     } budget;
     // Per-CCF-layer means [s], the paper's Table 1 columns (field strategy).
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;

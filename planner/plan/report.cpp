@@ -90,6 +90,9 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
                                      {"layers", s.budget.layers},
                                      {"layers_met", s.budget.layers_met},
                                      {"worst_error", s.budget.worst_error}};
+    if (s.budget.p_layers > 0)
+        report["fibre"]["budget"]["p"] = {{"lowest", s.budget.lowest_p},
+                                          {"highest", s.budget.highest_p}};
     for (const auto& [name, b] : s.boundaries)
         report["fibre"]["boundaries"][name] = {{"edge_m", b.edge_mm / 1000.0},
                                                {"coverage", b.coverage()},

@@ -90,6 +90,14 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         "as too short); PLA %.2f m\n",
         s.fibre_length_mm / 1000.0, s.fibre_paths, s.fibre_min_spacing_mm, s.fibre_min_length_mm,
         s.dropped_short, s.pla_length_mm / 1000.0);
+    if (s.budget.layers > 0) {
+        std::printf("budget     %.2f m asked: %d of %d CCF layers within 5%% (worst %.1f%%)",
+                    s.budget.target_mm / 1000.0, s.budget.layers_met, s.budget.layers,
+                    100 * s.budget.worst_error);
+        if (s.budget.p_layers > 0)
+            std::printf("; density contrast p %.2f to %.2f", s.budget.lowest_p, s.budget.highest_p);
+        std::printf("\n");
+    }
     std::printf(
         "quality    fibres along the tension: stress-weighted |cos| %.3f; density vs "
         "sigma^p correlation %.3f; turning %.0f deg/m\n",
