@@ -22,6 +22,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace fibrecell::planner;
 namespace fs = std::filesystem;
@@ -42,14 +45,30 @@ double peak_memory_mb() {
     return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
-// Plans the job file like `fibrecell plan` and writes the plan directory; prints one row.
+// Plans the job file like `fibrecell plan` and writes the plan directory; prints one row, and
+// where the time went (from one stage's first progress report to the next's) below the table.
 void plan_and_print(const char* name, const fs::path& job_file, const PaperRow& paper,
-                    jobs::ThreadPool& pool, const fs::path& out) {
+                    jobs::ThreadPool& pool, const fs::path& out, std::string& stages) {
     Stopwatch clock;
+    // Calls for "layers" come from the pool's threads, one at a time.
+    std::vector<std::pair<std::string, double>> starts;
+    const StepControl control{.progress = [&](std::string_view stage, double) {
+        if (starts.empty() || starts.back().first != stage)
+            starts.emplace_back(std::string(stage), clock.elapsed());
+    }};
     // The paper's Table 1 has no stiffness prediction: mechanics_bench times that.
     const jobs::PlanJobResult r = jobs::plan_job(
-        {.job_file = job_file, .out_dir = out, .executor = &pool, .mechanics = false});
+        {.job_file = job_file, .out_dir = out, .executor = &pool, .mechanics = false}, control);
     const double total = clock.elapsed();
+    stages += std::string(name) + " stages [s]:";
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+        const double end = i + 1 < starts.size() ? starts[i + 1].second : total;
+        char item[64];
+        std::snprintf(item, sizeof item, " %s %.3f", starts[i].first.c_str(),
+                      end - starts[i].second);
+        stages += item;
+    }
+    stages += "\n";
     const FieldStageResult& field = r.field;
     const auto& s = r.layers->stats;
     std::printf(
@@ -108,14 +127,16 @@ int main() {
 
     jobs::ThreadPool pool({.threads = 2});
     const fs::path loop_file = FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml";
-    plan_and_print("Loop", loop_file, {"Loop", 32473, 8.210, 130.862}, pool, tmp / "loop");
+    std::string stages;
+    plan_and_print("Loop", loop_file, {"Loop", 32473, 8.210, 130.862}, pool, tmp / "loop", stages);
 
     compare_strategies(load_job_file(loop_file.string()), pool);
     const std::string mesh = write_shell_sized_part(tmp);
     fibrecell::config::write_file_durably(tmp / "shell.job.yaml",
                                           "name: shell-sized\nmodel:\n  mesh: " + mesh + "\n");
     plan_and_print("Shell", tmp / "shell.job.yaml", {"Shell", 112080, 24.077, 758.140}, pool,
-                   tmp / "shell");
+                   tmp / "shell", stages);
+    std::printf("\n%s", stages.c_str());
     fs::remove_all(tmp);
     return 0;
 }

@@ -34,8 +34,13 @@ fs::path folder_of(const fs::path& path) {
     return path.has_parent_path() ? path.parent_path() : fs::path(".");
 }
 
-// The complete file at `path`, replaced atomically; only its folder entry is not yet durable.
-void replace_file(const fs::path& path, std::string_view text) {
+enum class Sync { now, later };
+
+// The complete file at `path`, replaced atomically. Sync::now: its data is on the disk before the
+// rename, only its folder entry is not yet durable. Sync::later: its writeback is only started,
+// and the caller fsyncs it before relying on it (many files' I/O then overlaps instead of each
+// write waiting for the disk in turn).
+void replace_file(const fs::path& path, std::string_view text, Sync sync) {
     static std::atomic<unsigned> counter{0};
     fs::path temp = path;
     temp += std::string(temp_marker) + std::to_string(::getpid()) + "-" +
@@ -44,7 +49,12 @@ void replace_file(const fs::path& path, std::string_view text) {
     if (fd < 0) fail("cannot create", temp);
     try {
         write_all(fd, text, temp);
-        if (::fsync(fd) != 0) fail("cannot sync", temp);
+        if (sync == Sync::now) {
+            if (::fsync(fd) != 0) fail("cannot sync", temp);
+        } else {
+            // A hint only: an error here shows again in the fsync that follows.
+            ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
+        }
     } catch (...) {
         ::close(fd);
         ::unlink(temp.c_str());
@@ -64,20 +74,25 @@ void replace_file(const fs::path& path, std::string_view text) {
     }
 }
 
-}  // namespace
-
-void sync_directory(const fs::path& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) fail("cannot open folder", dir);
+// fsync of a file or (O_DIRECTORY) a folder by its path; `kind` names it in the error.
+void sync_path(const fs::path& path, int flags, const std::string& kind) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | flags);
+    if (fd < 0) fail("cannot open " + kind, path);
     const int rc = ::fsync(fd);
     const int err = errno;
     ::close(fd);
     errno = err;
-    if (rc != 0) fail("cannot sync folder", dir);
+    if (rc != 0) fail("cannot sync " + kind, path);
+}
+
+}  // namespace
+
+void sync_directory(const fs::path& dir) {
+    sync_path(dir, O_DIRECTORY, "folder");
 }
 
 void write_file_durably(const fs::path& path, std::string_view text) {
-    replace_file(path, text);
+    replace_file(path, text, Sync::now);
     sync_directory(folder_of(path));
 }
 
@@ -97,11 +112,15 @@ void DurableFiles::write(const fs::path& relative, std::string_view text) {
     std::error_code ec;
     fs::create_directories(folder_of(path), ec);
     if (ec) throw std::system_error(ec, "cannot create folder " + folder_of(path).string());
-    replace_file(path, text);
+    replace_file(path, text, Sync::later);
+    written_.insert(path);
     touched_.insert(folder_of(path));
 }
 
 void DurableFiles::commit() {
+    for (const fs::path& path : written_)
+        sync_path(path, 0, "file");  // their writeback started long ago
+    written_.clear();
     // Deepest first: a folder's own entries are on the disk before its entry in its parent.
     for (auto it = touched_.rbegin(); it != touched_.rend(); ++it) sync_directory(*it);
     touched_.clear();

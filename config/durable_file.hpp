@@ -6,9 +6,9 @@
 //   write_file_durably(job / "state.json", text);   // one file, on the disk when it returns
 //
 //   DurableFiles plan(dir);                         // many files, durable together:
-//   plan.write("toolpaths.json", text);             //   temp + fsync + rename, one by one
+//   plan.write("toolpaths.json", text);             //   temp + rename, writeback started
 //   plan.write("rapid/FcChunk0001.mod", chunk);
-//   plan.commit();                                  //   each folder touched fsynced, once
+//   plan.commit();                                  //   each file, then each folder fsynced
 
 #include <filesystem>
 #include <set>
@@ -28,10 +28,12 @@ void sync_directory(const std::filesystem::path& dir);
 bool is_leftover_temp_file(const std::filesystem::path& path);
 
 // Files under one root folder, written one by one and made durable together: each write() puts a
-// complete file in place atomically (temporary name, fsync, rename; missing folders created), and
-// commit() fsyncs every folder that got a new entry, so that after commit() a crash or power
-// loss keeps every file. Nothing is durable before commit(); a writer destroyed without it leaves
-// complete files that may not survive a power loss.
+// complete file in place atomically (temporary name, rename; missing folders created) and starts
+// its writeback, and commit() fsyncs every file written, then every folder that got a new entry,
+// so that after commit() a crash or power loss keeps every file. Nothing is durable before
+// commit(): a process that dies leaves complete files, but after a power loss a file written
+// since the last commit may be empty or short. (A plan says it is whole with its manifest,
+// written durably after the commit.)
 class DurableFiles {
   public:
     explicit DurableFiles(std::filesystem::path root);
@@ -46,6 +48,7 @@ class DurableFiles {
 
   private:
     std::filesystem::path root_;
+    std::set<std::filesystem::path> written_;  // files not yet synced
     std::set<std::filesystem::path> touched_;  // folders with new entries, not yet synced
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a plan directory so that it is complete or recognisably not: every file durable (temp,
-// fsync, rename, folder fsync through config::DurableFiles) and its size and sha256 noted, then,
+// rename, file and folder fsync through config::DurableFiles) and its size and sha256 noted, then,
 // last, manifest.json. A plan cut short by a crash has no manifest and is never printed; the
 // service marks a job planned only after finish() returned.
 //
