@@ -9,6 +9,7 @@
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/path_chains.hpp"
 #include "planner/fibre/ring_attach.hpp"
+#include "planner/fibre/ring_extend.hpp"
 #include "planner/fibre/scalar_field.hpp"
 #include "planner/layers/outline.hpp"
 #include "planner/stopwatch.hpp"
@@ -61,6 +62,8 @@ void connect_piece(const FibreRegion& region, std::vector<Polyline> curves,
         attach_short_rings(chains, b.boundary, region.part,
                            {.spacing_mm = w, .cutter_distance_mm = options.cutter_distance_mm},
                            &out.joined_ring_points);
+    out.rings_extended += extend_short_rings(
+        b.boundary, region.ring_loops, {.min_length_mm = options.cutter_distance_mm, .step_mm = w});
     for (Polyline& c : chains) paths.push_back({PathRole::fibre, c.closed, std::move(c.points)});
     for (Polyline& r : b.boundary)
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});

@@ -42,6 +42,7 @@ struct FibreLayer {
     std::size_t joins = 0;          // links made by the connection (Steps 3-4)
     std::size_t spacing_cuts = 0;   // paths the final laying had to cut to keep W
     std::size_t rings_joined = 0;   // rings shorter than the cutter laid as part of a stress path
+    std::size_t rings_extended = 0;  // arcs too short to cut run on along their loop instead
     // Where they are, for the report per boundary: each link's meeting point (the middle of the
     // two ends it joins) and the first point of each joined ring.
     std::vector<Eigen::Vector2d> join_points, joined_ring_points;

@@ -100,8 +100,8 @@ FibreRegion fibre_region(const LayerOutline& outline, const std::vector<Segment2
     }
     out.stress = region_difference(out.part, segment_band(selected, 2.5 * w + chord, offset));
     const SelectedDistance distance(selected, 3 * w);
-    out.rings =
-        runs_on_selected(offset_region(outline.loops, -1.5 * w, offset), distance, 1.5 * w, w);
+    out.ring_loops = offset_region(outline.loops, -1.5 * w, offset);
+    out.rings = runs_on_selected(out.ring_loops, distance, 1.5 * w, w);
     out.link_curves = runs_on_selected(out.stress, distance, 2.5 * w + chord, w);
     return out;
 }

@@ -21,6 +21,7 @@ struct FibreRegion {
     std::vector<Polygon> part;          // the outline inset W/2: where any ribbon fits
     std::vector<Polygon> stress;        // loops, even-odd: where stress-following fibre may lie
     std::vector<Polyline> rings;        // d = 1.5W along the selected boundary: closed or arcs
+    std::vector<Polygon> ring_loops;    // the whole d = 1.5W loops the rings lie on
     std::vector<Polyline> link_curves;  // the edge of `stress` where it is 2.5W from it
 };
 

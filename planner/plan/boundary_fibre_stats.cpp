@@ -71,12 +71,13 @@ BoundaryFibreStats boundary_fibre_stats(const LayerMesh& layer,
     }
     for (const Toolpath& path : paths) {
         if (path.role != PathRole::fibre_boundary || path.points.size() < 2) continue;
+        // The ring's points along this boundary: an arc run on past the boundary's ends
+        // (extend_short_rings) lies along other edges there, and another boundary's ring
+        // nowhere near.
         std::vector<double> d;
         for (const Eigen::Vector2d& p : resampled(path.points, path.closed, sample_mm))
-            d.push_back(nearest(boundary, p));
-        std::vector<double> sorted = d;
-        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        if (!(sorted[sorted.size() / 2] <= 2 * spacing_mm)) continue;  // another boundary's
+            if (const double near = nearest(boundary, p); near <= 2 * spacing_mm) d.push_back(near);
+        if (d.empty()) continue;
         ++out.rings;
         out.ring_mm += path_length(path);
         out.ring_distance_mm.insert(out.ring_distance_mm.end(), d.begin(), d.end());

@@ -18,11 +18,12 @@ namespace fibrecell::planner {
 struct BoundaryFibreStats {
     double edge_mm = 0;     // the boundary's outline length in the layers
     double covered_mm = 0;  // of it, with fibre within 1.5W + 0.2 mm (a ring or a joined one)
-    int rings = 0;          // fibre-boundary paths following this boundary
+    int rings = 0;          // fibre-boundary paths following this boundary (within 2W of it)
     int rings_joined = 0;   // its rings too short to cut, laid on from a stress path
     int joins = 0;          // links of the connection made within 3W of it
     double ring_mm = 0;
-    std::vector<double> ring_distance_mm;  // ring points every 0.5 mm: distance to the boundary
+    // Ring points every 0.5 mm within 2W of the boundary: their distance to it.
+    std::vector<double> ring_distance_mm;
 
     BoundaryFibreStats& operator+=(const BoundaryFibreStats& o);
     double coverage() const { return edge_mm > 0 ? covered_mm / edge_mm : 0.0; }

@@ -32,6 +32,7 @@ struct LayerWork {
     int dropped_short = 0;
     int joins = 0;
     int rings_joined = 0;
+    int rings_extended = 0;
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
@@ -220,6 +221,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.min_spacing = r.min_spacing_mm;
             w.joins = static_cast<int>(r.joins);
             w.rings_joined = static_cast<int>(r.rings_joined);
+            w.rings_extended = static_cast<int>(r.rings_extended);
             w.sigma = std::move(r.field.sigma_f);
             w.warnings = std::move(r.warnings);
             w.timings = r.timings;
@@ -279,6 +281,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         }
         st.fibre_joins += w.joins;
         st.fibre_rings_joined += w.rings_joined;
+        st.fibre_rings_extended += w.rings_extended;
         if (w.min_spacing > 0)
             st.fibre_min_spacing_mm = st.fibre_min_spacing_mm == 0
                                           ? w.min_spacing

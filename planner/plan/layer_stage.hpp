@@ -25,6 +25,7 @@ struct LayerStageStats {
     int fibre_boundary_paths = 0;  // of fibre_paths, boundary-conformal rings (Section 4.4)
     int fibre_joins = 0;           // curve ends joined by the connection (Section 4.4)
     int fibre_rings_joined = 0;    // rings shorter than the cutter laid on from a stress path
+    int fibre_rings_extended = 0;  // arcs shorter than the cutter run on along their loop
     // Smallest distance between two fibre points of a layer, between paths or within one (4W
     // apart along it), capped at 3W (0: none); fibre_spacing_mm.
     double fibre_min_spacing_mm = 0;

@@ -83,7 +83,8 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
     report["fibre"] = {
         {"length_m", s.fibre_length_mm / 1000.0},   {"paths", s.fibre_paths},
         {"boundary_paths", s.fibre_boundary_paths}, {"joins", s.fibre_joins},
-        {"rings_joined", s.fibre_rings_joined},     {"dropped_short", s.dropped_short},
+        {"rings_joined", s.fibre_rings_joined},     {"rings_extended", s.fibre_rings_extended},
+        {"dropped_short", s.dropped_short},
         {"min_spacing_mm", s.fibre_min_spacing_mm}, {"min_length_mm", s.fibre_min_length_mm}};
     if (s.budget.layers > 0)
         report["fibre"]["budget"] = {{"target_m", s.budget.target_mm / 1000.0},

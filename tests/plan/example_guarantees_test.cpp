@@ -348,6 +348,10 @@ TEST(ReferenceGuarantees, Bunnyhead) {
     EXPECT_GT(both.field.stats.fibre_rings_joined, 0);
     EXPECT_EQ(both.field.stats.boundaries[0].second.rings_joined,
               both.field.stats.fibre_rings_joined);
+    // Its arcs that no path could take run on along the edge (at 1.5W, as check_guarantees
+    // measured): 56% of the handle's edge has fibre beside it (32% when they were dropped).
+    EXPECT_GT(both.field.stats.fibre_rings_extended, 0);
+    EXPECT_GT(both.field.stats.boundaries[0].second.coverage(), 0.5);
 }
 
 TEST(ReferenceGuarantees, YogaNew) {
@@ -359,4 +363,9 @@ TEST(ReferenceGuarantees, YogaNew) {
     // crowding 9%).
     min_layer_ratio(both);
     EXPECT_GT(both.field.stats.fibre_length_mm / both.baseline.stats.fibre_length_mm, 0.17);
+    // The handle: every arc joined onto a path or run on along the edge; fibre beside all of it
+    // (54% when the arcs were dropped).
+    ASSERT_EQ(both.field.stats.boundaries.size(), 1u);
+    EXPECT_GT(both.field.stats.fibre_rings_extended, 0);
+    EXPECT_GT(both.field.stats.boundaries[0].second.coverage(), 0.95);
 }
