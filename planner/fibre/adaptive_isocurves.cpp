@@ -142,13 +142,14 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
     const double w = options.spacing_mm;
     const double cap = 2.0 * w;  // farther than this, the exact distance does not matter
     const double crowding = options.crowded_fraction;
-    auto extract = [&](int n) {
+    // measure: the paper's Steps decide on d; a crowded fraction chooses n without it.
+    auto extract = [&](int n, bool measure) {
         std::vector<double> isovalues(n);
         for (int i = 0; i < n; ++i) isovalues[i] = s_min + (0.5 + i) / n * (s_max - s_min);
         ++out.extractions;
         out.curves = extract_isocurves(piece, s, isovalues);
         out.count = n;
-        out.min_distance_mm = min_neighbour_distance(out.curves, cap);
+        out.min_distance_mm = measure ? min_neighbour_distance(out.curves, cap) : 0.0;
     };
 
     if (crowding > 0 || options.density_scale != 1.0) {
@@ -158,7 +159,7 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
         const double g = gradient_quantile(piece, s, 1 - crowding);
         const double count =
             g > 0 ? std::floor(options.density_scale * (s_max - s_min) / (w * g)) : 1;
-        extract(static_cast<int>(std::clamp(count, 1.0, double(options.max_curves))));
+        extract(static_cast<int>(std::clamp(count, 1.0, double(options.max_curves))), false);
         double before = 0, after = 0;
         for (const Polyline& c : out.curves) before += polyline_length(c);
         out.curves = trim_to_spacing(out.curves, out.count, {.spacing_mm = w});
@@ -169,11 +170,11 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
 
     // Steps 3-4: grow n until the curves are over-dense (d <= W).
     int n = std::max(1, static_cast<int>(std::ceil(out.geodesic_span_mm / w)));
-    extract(n);
+    extract(n, true);
     while (out.min_distance_mm > w && n < options.max_curves) {
         n = std::min(options.max_curves,
                      std::max(n + 1, static_cast<int>(std::ceil(n * out.min_distance_mm / w))));
-        extract(n);
+        extract(n, true);
     }
     // Steps 5-6 as the paper states them: n steps down by one from the over-dense count until
     // neighbours are more than W apart (the spacing need not shrink monotonically with n, so a
@@ -187,7 +188,7 @@ AdaptiveIsocurves adaptive_isocurves(const LayerMesh& piece, const std::vector<d
                 ++out.counts_ruled_out;
                 continue;
             }
-            extract(n);  // n = 1 always ends it: a single level has no neighbour
+            extract(n, true);  // n = 1 always ends it: a single level has no neighbour
             if (out.min_distance_mm > w) break;
         }
     }

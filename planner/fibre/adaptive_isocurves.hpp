@@ -29,7 +29,7 @@ struct AdaptiveIsocurves {
     std::vector<Polyline> curves;  // level = isovalue index within the piece
     int count = 0;                 // n, the number of isovalues finally used
     double geodesic_span_mm = 0;   // D of Step 2
-    // d of the final set (or W*2 when nothing is near); with a crowded fraction, before the cut.
+    // d of the final set (or W*2 when nothing is near); 0 with a crowded fraction (not needed).
     double min_distance_mm = 0;
     double trimmed_mm = 0;     // curve length cut back where it crowded
     int extractions = 0;       // how often Steps 3/5 ran
