@@ -23,11 +23,13 @@ double loop_length(const Polygon& loop) {
     return l;
 }
 
-// Appends the points of a-b after a, b included, no two more than `step` apart.
-template <class Push>
-void densify_to(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double step, Push push) {
+// The points from a (left out) to b, no two more than `step` apart.
+std::vector<Eigen::Vector2d> way_to(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                    double step) {
     const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-    for (int i = 1; i <= n; ++i) push(a + (b - a) * (static_cast<double>(i) / n));
+    std::vector<Eigen::Vector2d> out;
+    for (int i = 1; i <= n; ++i) out.push_back(a + (b - a) * (static_cast<double>(i) / n));
+    return out;
 }
 
 }  // namespace
@@ -52,27 +54,22 @@ std::size_t extend_short_rings(std::vector<Polyline>& rings, const std::vector<P
         int free = (front - back - 1 + 2 * n) % n;  // loop vertices not in the ring
         double grown_ahead = 0, grown_behind = 0;
         while (length < options.min_length_mm && free > 0) {
-            if (grown_ahead <= grown_behind) {
-                const Eigen::Vector2d from = points.back();
-                const double before = length;
-                densify_to(from, loop[static_cast<std::size_t>(ahead)], options.step_mm,
-                           [&](const Eigen::Vector2d& q) {
-                               length += (q - points.back()).norm();
-                               points.push_back(q);
-                           });
-                grown_ahead += length - before;
-                ahead = (ahead + 1) % n;
-            } else {
-                const Eigen::Vector2d from = points.front();
-                const double before = length;
-                densify_to(from, loop[static_cast<std::size_t>(behind)], options.step_mm,
-                           [&](const Eigen::Vector2d& q) {
-                               length += (q - points.front()).norm();
-                               points.push_front(q);
-                           });
-                grown_behind += length - before;
-                behind = (behind - 1 + n) % n;
+            const bool at_back = grown_ahead <= grown_behind;
+            int& next = at_back ? ahead : behind;
+            Eigen::Vector2d last = at_back ? points.back() : points.front();
+            double added = 0;
+            for (const Eigen::Vector2d& q :
+                 way_to(last, loop[static_cast<std::size_t>(next)], options.step_mm)) {
+                added += (q - last).norm();
+                last = q;
+                if (at_back)
+                    points.push_back(q);
+                else
+                    points.push_front(q);
             }
+            length += added;
+            (at_back ? grown_ahead : grown_behind) += added;
+            next = (next + (at_back ? 1 : n - 1)) % n;
             --free;
         }
         ring.points.assign(points.begin(), points.end());
