@@ -115,6 +115,8 @@ std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polylin
                 if (!clear) continue;
                 std::vector<Eigen::Vector2d> joined = fibre;
                 joined.insert(joined.end(), order.begin(), order.end());
+                // Still too short to cut, it would be dropped whole, the ring with it.
+                if (length_of({joined, false, 0}) < options.cutter_distance_mm) continue;
                 if (min_fibre_spacing({joined}, {0}, 4 * w, w) < w * (1 - 1e-9)) continue;
                 paths[end.path].points = std::move(joined);
                 done = true;

@@ -20,7 +20,7 @@ struct RingAttachOptions {
 // arcs along a partly selected loop); part: where any fibre may lie (the outline inset W/2).
 // Each ring shorter than the cutter distance is appended to the end of a path within reach, a
 // closed ring opened where the link meets it and stopped 1.5W short of coming round, when the
-// joined fibre keeps W from itself (points more than 4W apart along it), its link keeps W from
+// joined fibre is long enough to cut, keeps W from itself (points more than 4W apart along it), its link keeps W from
 // every other curve and lies in `part`. Joined rings are removed from `rings` and their count
 // returned (and, when `joined_at` is given, the first point of each, as it was, appended); the
 // rest are left for the caller's length check.

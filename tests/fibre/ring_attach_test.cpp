@@ -103,16 +103,28 @@ TEST(RingAttach, RingsLongEnoughToCutStayRings) {
 }
 
 TEST(RingAttach, AnArcIsLaidFromItsNearerEnd) {
-    // A ring along part of a selected edge: the arc y = 2, x = 5..25 (20 mm), a path ending
-    // 1 mm above its right end.
+    // A ring along part of a selected edge: the arc y = 2, x = 5..25 (20 mm), a path of 25 mm
+    // ending 1 mm above its right end.
     Polyline arc{.points = {}, .closed = false};
     for (double x = 5; x <= 25 + 1e-9; x += 0.5) arc.points.push_back({x, 2});
-    std::vector<Polyline> paths = {line({25, 20}, {25, 3})};
+    std::vector<Polyline> paths = {line({25, 28}, {25, 3})};
     std::vector<Polyline> rings = {arc};
     EXPECT_EQ(attach_short_rings(paths, rings, plate(), {.spacing_mm = W}), 1u);
     const auto& p = paths[0].points;
     EXPECT_EQ(p.back(), Eigen::Vector2d(5, 2));
     EXPECT_EQ(p[2], Eigen::Vector2d(25, 2));
+}
+
+TEST(RingAttach, AJoinStillTooShortToCutIsNotMade) {
+    // The same arc and a path of 17 mm: joined, 38 mm, under the 42 mm cutter distance, and the
+    // whole would be dropped. The ring is left (to run on along its edge: ring_extend).
+    Polyline arc{.points = {}, .closed = false};
+    for (double x = 5; x <= 25 + 1e-9; x += 0.5) arc.points.push_back({x, 2});
+    std::vector<Polyline> paths = {line({25, 20}, {25, 3})};
+    std::vector<Polyline> rings = {arc};
+    EXPECT_EQ(attach_short_rings(paths, rings, plate(), {.spacing_mm = W}), 0u);
+    EXPECT_EQ(rings.size(), 1u);
+    EXPECT_EQ(paths[0].points.size(), 2u);
 }
 
 }  // namespace
