@@ -36,12 +36,12 @@ struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
 };
 
 struct FibreLayer {
-    std::vector<Toolpath> paths;    // roles fibre and fibre-boundary, in print order
-    LayerField field;               // per triangle of the layer (for previews)
-    std::size_t dropped_short = 0;  // paths shorter than the cutter distance
-    std::size_t joins = 0;          // links made by the connection (Steps 3-4)
-    std::size_t spacing_cuts = 0;   // paths the final laying had to cut to keep W
-    std::size_t rings_joined = 0;   // rings shorter than the cutter laid as part of a stress path
+    std::vector<Toolpath> paths;     // roles fibre and fibre-boundary, in print order
+    LayerField field;                // per triangle of the layer (for previews)
+    std::size_t dropped_short = 0;   // paths shorter than the cutter distance
+    std::size_t joins = 0;           // links made by the connection (Steps 3-4)
+    std::size_t spacing_cuts = 0;    // paths the final laying had to cut to keep W
+    std::size_t rings_joined = 0;    // rings shorter than the cutter laid as part of a stress path
     std::size_t rings_extended = 0;  // arcs too short to cut run on along their loop instead
     // Where they are, for the report per boundary: each link's meeting point (the middle of the
     // two ends it joins) and the first point of each joined ring.
