@@ -31,6 +31,13 @@ Polyline line(Eigen::Vector2d a, Eigen::Vector2d b) {
     return {{a, b}, false, 0};
 }
 
+// A ring along part of a selected edge: the arc y = 2, x = 5..25 (20 mm), points 0.5 mm apart.
+Polyline edge_arc() {
+    Polyline arc{.points = {}, .closed = false};
+    for (double x = 5; x <= 25 + 1e-9; x += 0.5) arc.points.push_back({x, 2});
+    return arc;
+}
+
 std::vector<Polygon> plate() {
     return {test::rectangle(0.5, 0.5, 39.5, 29.5), test::circle_hole(pin, 5.5, 64)};
 }
@@ -103,12 +110,9 @@ TEST(RingAttach, RingsLongEnoughToCutStayRings) {
 }
 
 TEST(RingAttach, AnArcIsLaidFromItsNearerEnd) {
-    // A ring along part of a selected edge: the arc y = 2, x = 5..25 (20 mm), a path of 25 mm
-    // ending 1 mm above its right end.
-    Polyline arc{.points = {}, .closed = false};
-    for (double x = 5; x <= 25 + 1e-9; x += 0.5) arc.points.push_back({x, 2});
+    // The edge arc and a path of 25 mm ending 1 mm above its right end.
     std::vector<Polyline> paths = {line({25, 28}, {25, 3})};
-    std::vector<Polyline> rings = {arc};
+    std::vector<Polyline> rings = {edge_arc()};
     EXPECT_EQ(attach_short_rings(paths, rings, plate(), {.spacing_mm = W}), 1u);
     const auto& p = paths[0].points;
     EXPECT_EQ(p.back(), Eigen::Vector2d(5, 2));
@@ -118,10 +122,8 @@ TEST(RingAttach, AnArcIsLaidFromItsNearerEnd) {
 TEST(RingAttach, AJoinStillTooShortToCutIsNotMade) {
     // The same arc and a path of 17 mm: joined, 38 mm, under the 42 mm cutter distance, and the
     // whole would be dropped. The ring is left (to run on along its edge: ring_extend).
-    Polyline arc{.points = {}, .closed = false};
-    for (double x = 5; x <= 25 + 1e-9; x += 0.5) arc.points.push_back({x, 2});
     std::vector<Polyline> paths = {line({25, 20}, {25, 3})};
-    std::vector<Polyline> rings = {arc};
+    std::vector<Polyline> rings = {edge_arc()};
     EXPECT_EQ(attach_short_rings(paths, rings, plate(), {.spacing_mm = W}), 0u);
     EXPECT_EQ(rings.size(), 1u);
     EXPECT_EQ(paths[0].points.size(), 2u);
