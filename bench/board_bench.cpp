@@ -8,6 +8,7 @@
 #include "drivers/marlin/marlin_link.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 #include "gt2560_avr_process.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -103,7 +104,7 @@ void measure_step_start(fibrecell::bench::Gt2560AvrProcess& board) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const std::string build = argc > 1 ? argv[1] : FIBRECELL_BINARY_DIR;
+    const std::string build = argc > 1 ? argv[1] : fibrecell::test::binary_path();
     std::string tmpl = (fs::temp_directory_path() / "board-bench-XXXXXX").string();
     const fs::path dir = mkdtemp(tmpl.data());
     {

@@ -10,6 +10,7 @@
 #include "planner/fea/linear_elastic.hpp"
 #include "planner/io/vtk_writer.hpp"
 #include "planner/stopwatch.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -66,7 +67,7 @@ int main() {
                 "locate", "bare", "fibre", "(asm   fact  solve stress)", "total", "fibre", "k bare",
                 "k fibre", "gain");
     jobs::ThreadPool pool({.threads = 2});
-    plan_and_print("Loop", FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml", pool, tmp / "loop");
+    plan_and_print("Loop", fibrecell::test::source_path("examples/loop/loop.job.yaml"), pool, tmp / "loop");
     plan_and_print("Shell", write_plate_job(tmp, 112080), pool, tmp / "plate");
     fs::remove_all(tmp);
     return 0;

@@ -14,6 +14,7 @@
 #include "planner/plan/field_stage.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "planner/stopwatch.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
@@ -126,7 +127,7 @@ int main() {
                 "(paper, ratio)", "total s (paper, ratio)", "MB", "fibre  align");
 
     jobs::ThreadPool pool({.threads = 2});
-    const fs::path loop_file = FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml";
+    const fs::path loop_file = fibrecell::test::source_path("examples/loop/loop.job.yaml");
     std::string stages;
     plan_and_print("Loop", loop_file, {"Loop", 32473, 8.210, 130.862}, pool, tmp / "loop", stages);
 

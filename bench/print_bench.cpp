@@ -19,6 +19,7 @@
 #include "drivers/sim/mock_gt2560.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
 #include "gt2560_avr_process.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -127,7 +128,7 @@ int main(int argc, char** argv) {
 
     drivers::sim::SimCellOptions co;
     co.time_scale = scale;
-    co.main_module = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
+    co.main_module = fibrecell::test::source_path("drivers/abb/rapid/FcMain.mod");
     drivers::sim::SimCell cell(co);
     drivers::sim::MockGt2560Options mo;
     mo.time_scale = scale;

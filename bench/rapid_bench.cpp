@@ -13,6 +13,7 @@
 #include "planner/plan/layer_stage.hpp"
 #include "planner/plan/toolpaths_json.hpp"
 #include "planner/stopwatch.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
     } else {
         source = "examples/loop/loop.job.yaml (planned now, not timed)";
         const planner::JobSpec job =
-            planner::load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+            planner::load_job_file(fibrecell::test::source_path("examples/loop/loop.job.yaml"));
         const planner::FieldStageResult field = planner::run_field_stage(
             job, planner::read_volume_model(job.model.mesh_path, job.model.stress_path));
         layers = planner::run_layer_stage(job, field, {.cutter_distance_mm = cutter_mm}).layers;

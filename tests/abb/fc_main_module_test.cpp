@@ -19,12 +19,13 @@
 #include <vector>
 
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/project_paths.hpp"
 
 using namespace fibrecell::drivers::abb::rapid;
 
 namespace {
 
-const std::string module_path = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
+const std::string module_path = fibrecell::test::source_path("drivers/abb/rapid/FcMain.mod");
 
 // The signals of docs/irc5-setup.md (cell YAML defaults).
 const std::vector<std::string> fc_signals = {"diFcPause",   "diFcAbort",   "diFcHeartbeat",

@@ -6,12 +6,13 @@
 #include <string>
 
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/project_paths.hpp"
 
 using namespace fibrecell::drivers::abb::rapid;
 
 namespace {
 
-const std::string data_dir = std::string(FIBRECELL_TEST_DATA) + "/rapid/";
+const std::string data_dir = fibrecell::test::test_data_path("rapid/");
 
 ValidateOptions chunk_options() {
     ValidateOptions o;

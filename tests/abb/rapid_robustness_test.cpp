@@ -9,13 +9,14 @@
 #include <string>
 
 #include "drivers/abb/rapid/reader.hpp"
+#include "tests/support/project_paths.hpp"
 
 using namespace fibrecell::drivers::abb::rapid;
 
 namespace {
 
 std::string read_file(const std::string& name) {
-    std::ifstream in(std::string(FIBRECELL_TEST_DATA) + "/rapid/" + name, std::ios::binary);
+    std::ifstream in(fibrecell::test::test_data_path("rapid/") + name, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();

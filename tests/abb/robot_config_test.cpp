@@ -5,6 +5,7 @@
 
 #include "config/yaml_section.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,7 @@ RobotCellConfig load_text(const std::string& yaml) {
 
 RobotCellConfig load_file(const std::string& name) {
     return load_robot_config(
-        config::Section::load_file(std::string(FIBRECELL_TEST_DATA) + "/abb/" + name)
+        config::Section::load_file(fibrecell::test::test_data_path("abb/") + name)
             .section("robot"));
 }
 

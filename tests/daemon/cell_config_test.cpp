@@ -2,6 +2,7 @@
 
 #include "config/yaml_section.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,14 +13,14 @@
 using namespace fibrecell;
 
 TEST(CellConfig, ShippedSimulatedCellIsValid) {
-    const auto c = daemon::load_cell_config(FIBRECELL_SOURCE_DIR "/config/cell-sim.yaml");
+    const auto c = daemon::load_cell_config(fibrecell::test::source_path("config/cell-sim.yaml"));
     EXPECT_EQ(c.name, "sim-cell");
     EXPECT_TRUE(c.simulated);
     EXPECT_EQ(c.extruder.link.serial.baud_rate, 250000);
 }
 
 TEST(CellConfig, ShippedIrc5CellIsValid) {
-    const auto c = daemon::load_cell_config(FIBRECELL_SOURCE_DIR "/config/cell-irc5.yaml");
+    const auto c = daemon::load_cell_config(fibrecell::test::source_path("config/cell-irc5.yaml"));
     EXPECT_FALSE(c.simulated);
     EXPECT_EQ(c.robot.variant, fibrecell::drivers::abb::Irb1200Variant::irb1200_7_70);
 }
@@ -38,11 +39,11 @@ TEST(CellConfig, ErrorsNameTheKeyPath) {
 }
 
 TEST(CellConfig, RobotLinkSections) {
-    const auto sim = daemon::load_cell_config(FIBRECELL_SOURCE_DIR "/config/cell-sim.yaml");
+    const auto sim = daemon::load_cell_config(fibrecell::test::source_path("config/cell-sim.yaml"));
     EXPECT_EQ(sim.robot_io.stable_reads, 1);
     EXPECT_EQ(sim.rws.client.user, "Default User");
     EXPECT_EQ(sim.rws.job_dir, "fibrecell/job");
-    const auto irc5 = daemon::load_cell_config(FIBRECELL_SOURCE_DIR "/config/cell-irc5.yaml");
+    const auto irc5 = daemon::load_cell_config(fibrecell::test::source_path("config/cell-irc5.yaml"));
     EXPECT_EQ(irc5.robot_io.host, "192.168.125.50");
     EXPECT_EQ(irc5.robot_io.stable_reads, 2);
     EXPECT_EQ(irc5.rws.client.host, "192.168.125.1");

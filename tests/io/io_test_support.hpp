@@ -5,6 +5,7 @@
 #include "planner/input_error.hpp"
 #include "planner/mesh/tet_mesh.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,7 @@ inline const std::vector<fibrecell::planner::Tet> kCubeTets = {
     {0, 1, 3, 7}, {0, 5, 1, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 6, 4, 7}};
 
 inline std::string data_path(const std::string& name) {
-    return std::string(FIBRECELL_TEST_DATA) + "/io/" + name;
+    return fibrecell::test::test_data_path("io/") + name;
 }
 
 inline std::string read_text(const std::string& path) {

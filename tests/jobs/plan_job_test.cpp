@@ -8,6 +8,7 @@
 #include "job_test_files.hpp"
 #include "planner/mesh/structured_mesh.hpp"
 #include "planner/plan/toolpaths_json.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -154,7 +155,7 @@ TEST_F(PlanJobTest, FieldStageAloneAndBadJobsFailWithTheirReason) {
 
 TEST_F(PlanJobTest, CommandLineWritesWhatTheLibraryWrites) {
     plan_job(request("library"));
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell plan ") +
                             (dir_ / "bar.job.yaml").string() + " --threads 2 --out " +
                             (dir_ / "cli").string() + " > " + (dir_ / "stdout.txt").string() +
                             " 2> " + (dir_ / "stderr.txt").string();
@@ -206,7 +207,7 @@ TEST_F(PlanJobTest, ALoadCaseGivesThePredictedStiffnessInReportPreviewAndCommand
     EXPECT_FALSE(plan_job(off).report.contains("mechanics"));
     EXPECT_FALSE(plan_job(request("plain")).report.contains("mechanics"));
 
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell compare ") +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell compare ") +
                             (dir_ / "loaded.job.yaml").string() + " --threads 2 --out " +
                             (dir_ / "cmp").string() + " > " + (dir_ / "cmp.txt").string() + " 2> " +
                             (dir_ / "cmp.err").string();
@@ -221,7 +222,7 @@ TEST_F(PlanJobTest, ALoadCaseGivesThePredictedStiffnessInReportPreviewAndCommand
     EXPECT_TRUE(fs::exists(dir_ / "cmp" / "contour-zigzag" / "manifest.json"));
 
     // Without a load case compare says what it needs.
-    const std::string bad = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell compare ") +
+    const std::string bad = fibrecell::test::binary_path("tools/fibrecell compare ") +
                             (dir_ / "bar.job.yaml").string() + " --out " +
                             (dir_ / "nocase").string() + " > /dev/null 2> " +
                             (dir_ / "nocase.err").string();

@@ -9,6 +9,7 @@
 #include "planner/toolpaths/path_order.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/shared_data.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -281,7 +282,7 @@ JobSpec reference_job(const std::string& name) {
 // Figures measured when the examples were committed (Release and sanitizer builds agree); a
 // change beyond the tolerance is a change of the planner's behaviour and must be explained.
 TEST(ExampleGuarantees, TensileBar) {
-    const Both both = check_both(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+    const Both both = check_both(fibrecell::test::source_path("examples/tensile-bar/tensile-bar.job.yaml"));
     const LayerStageStats& s = both.field.stats;
     EXPECT_EQ(s.pla_layers, 5);
     EXPECT_EQ(s.ccf_layers, 5);
@@ -296,7 +297,7 @@ TEST(ExampleGuarantees, TensileBar) {
 }
 
 TEST(ExampleGuarantees, Loop) {
-    const Both both = check_both(load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml"),
+    const Both both = check_both(load_job_file(fibrecell::test::source_path("examples/loop/loop.job.yaml")),
                                  {1, 2, 3, 4});
     const LayerStageStats& s = both.field.stats;
     EXPECT_EQ(s.pla_layers, 13);

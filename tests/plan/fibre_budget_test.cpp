@@ -6,6 +6,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +33,7 @@ std::vector<double> ccf_lengths(const LayerStageResult& r) {
 }
 
 JobSpec tensile_bar(const std::string& budget, Strategy strategy) {
-    JobSpec job = load_job_file(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+    JobSpec job = load_job_file(fibrecell::test::source_path("examples/tensile-bar/tensile-bar.job.yaml"));
     job.planner.strategy = strategy;
     if (budget == "baseline")
         job.planner.fibre_budget.kind = FibreBudget::Kind::baseline;

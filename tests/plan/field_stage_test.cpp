@@ -9,6 +9,7 @@
 #include "planner/mesh/structured_mesh.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -131,7 +132,7 @@ TEST_F(FieldStageTest, CommandLineWritesFieldVtkAndReport) {
     write_bar();
     write_job();
     const fs::path out = dir_ / "plan";
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell plan ") +
                             (dir_ / "bar.job.yaml").string() + " --out " + out.string() +
                             " --stage field > " + (dir_ / "stdout.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << std::ifstream(dir_ / "stdout.txt").rdbuf();
@@ -160,7 +161,7 @@ TEST_F(FieldStageTest, CommandLineNamesTheBadKeyAndFails) {
     write_bar();
     write_job("planner:\n  eta: 7\n");
     const std::string log = (dir_ / "stderr.txt").string();
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell plan ") +
                             (dir_ / "bar.job.yaml").string() + " --out " +
                             (dir_ / "plan").string() + " 2> " + log;
     EXPECT_NE(std::system(cmd.c_str()), 0);

@@ -10,6 +10,7 @@
 #include "planner/plan/toolpaths_json.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -113,7 +114,7 @@ TEST_F(LayerStageTest, BarGetsAlternatingLayersAndStraightFibresAlongTheLoad) {
 
 TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
     const fs::path out = dir_ / "plan";
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell plan ") +
                             (dir_ / "bar.job.yaml").string() + " --out " + out.string() +
                             " > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0);

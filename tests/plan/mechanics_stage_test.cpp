@@ -6,6 +6,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "tests/support/plan_inputs.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -44,7 +45,7 @@ void print(const char* what, const Planned& p) {
 
 TEST(MechanicsStage, TheTensileBarIsStifferWithItsFibre) {
     const JobSpec job =
-        load_job_file(FIBRECELL_SOURCE_DIR "/examples/tensile-bar/tensile-bar.job.yaml");
+        load_job_file(fibrecell::test::source_path("examples/tensile-bar/tensile-bar.job.yaml"));
     ASSERT_TRUE(wants_mechanics(job));
     const FieldStageResult field = fibrecell::test::field_stage_of(job);
     const Planned p = plan(job, field);
@@ -61,7 +62,7 @@ TEST(MechanicsStage, TheTensileBarIsStifferWithItsFibre) {
 }
 
 TEST(MechanicsStage, OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre) {
-    JobSpec job = load_job_file(FIBRECELL_SOURCE_DIR "/examples/loop/loop.job.yaml");
+    JobSpec job = load_job_file(fibrecell::test::source_path("examples/loop/loop.job.yaml"));
     const FieldStageResult field = fibrecell::test::field_stage_of(job);
     const Planned ours = plan(job, field);
     print("Loop, field", ours);

@@ -5,6 +5,7 @@
 #include "planner/mesh/structured_mesh.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -110,7 +111,7 @@ TEST_F(ParameterSweepTest, EachPointIsThePlanOfThatValue) {
 TEST_F(ParameterSweepTest, CommandLineWritesTheSweepIntoReportAndPreview) {
     const fs::path out = dir_ / "plan";
     const std::string log = (dir_ / "out.txt").string();
-    const std::string plan = std::string(FIBRECELL_BINARY_DIR "/tools/fibrecell plan ") +
+    const std::string plan = fibrecell::test::binary_path("tools/fibrecell plan ") +
                              (dir_ / "bar.job.yaml").string() + " --out " + out.string();
     ASSERT_EQ(std::system((plan + " --sweep p=0,1,2 > " + log + " 2>&1").c_str()), 0)
         << std::ifstream(log).rdbuf();

@@ -8,6 +8,7 @@
 #include "daemon/print/print_plan.hpp"
 #include "daemon/print/program_file.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -55,7 +56,7 @@ class PlanFilesTest : public ::testing::Test {
         cell_.robot.rapid.max_chunk_lines = 60;
         settings_ = print_settings(planner::parse_job("name: part\nmodel: {mesh: loop.msh}\n",
                                                       "part.job.yaml",
-                                                      FIBRECELL_SOURCE_DIR "/examples/loop",
+                                                      fibrecell::test::source_path("examples/loop"),
                                                       planner::JobFiles::anywhere),
                                    cell_);
         plan_ = plan_robot(small_part(), cell_.robot, settings_, "part");

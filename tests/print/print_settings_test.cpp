@@ -3,6 +3,7 @@
 // commands are made from) or the job is refused with a message naming the job's key, the cell's
 // key and both values.
 #include "daemon/print/print_settings.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@ namespace {
 
 planner::JobSpec job_with(const std::string& yaml) {
     return planner::parse_job("name: j\nmodel:\n  mesh: loop.msh\n" + yaml, "j.job.yaml",
-                              FIBRECELL_SOURCE_DIR "/examples/loop", planner::JobFiles::anywhere);
+                              fibrecell::test::source_path("examples/loop"), planner::JobFiles::anywhere);
 }
 
 std::string refusal(const planner::JobSpec& job, const CellConfig& cell = {}) {

@@ -5,6 +5,7 @@
 // them (simulation.devices: external).
 #include "child_process.hpp"
 #include "service_fixture.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ class ExternalCell {
     // With `board_control`, board_command() injects the mock board's faults (its stdin).
     ExternalCell(const fs::path& dir, double time_scale, bool board_control = false)
         : board_log_(dir / "board.log"), trajectory_(dir / "trajectory.csv"), tty_(dir / "ttyGT2560") {
-        const std::string bin = FIBRECELL_BINARY_DIR;
+        const std::string bin = fibrecell::test::binary_path();
         const std::string scale = std::to_string(time_scale);
         std::vector<std::string> board_args{"--link", tty_.string(), "--time-scale", scale,
                                             "--bootloader-s", "0.2", "--hotend-tau-s", "2",

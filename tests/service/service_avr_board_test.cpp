@@ -10,6 +10,7 @@
 #include "service_fixture.hpp"
 #include "tests/support/piped_process.hpp"
 #include "tools/board-check/board_check.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,8 +22,8 @@ using namespace fibrecell::test;
 
 namespace {
 
-const std::string board_tool = std::string(FIBRECELL_BINARY_DIR) + "/tools/gt2560-avr";
-const std::string firmware = std::string(FIBRECELL_BINARY_DIR) + "/tests/firmware/gt2560-test-firmware.elf";
+const std::string board_tool = fibrecell::test::binary_path("tools/gt2560-avr");
+const std::string firmware = fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware.elf");
 
 class AvrBoardPrint : public ServiceTest {
   protected:
@@ -30,7 +31,7 @@ class AvrBoardPrint : public ServiceTest {
         if (!fs::exists(board_tool) || !fs::exists(firmware))
             GTEST_SKIP() << "gt2560-avr or the test firmware is not built (libsimavr-dev, gcc-avr)";
         ServiceTest::SetUp();
-        fs::copy(std::string(FIBRECELL_SOURCE_DIR) + "/examples/strip", dir_ / "strip");
+        fs::copy(fibrecell::test::source_path("examples/strip"), dir_ / "strip");
         // Real-time heaters, a little quicker than a real hotend's: 25 -> 250 C in about 12 s.
         std::string text = read_file(write_config(
             "extruder: {link: {port: " + tty().string() + "}}\n", /*time_scale=*/1));

@@ -2,6 +2,7 @@
 // --watch follows a job to its outcome, jobs and status in both output forms, and one clear line
 // with a non-zero exit code for every error (no service, a conflict).
 #include "service_fixture.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 
@@ -21,7 +22,7 @@ struct CliRun {
 
 // Runs the client with `args`; stdout and stderr together.
 CliRun fibrecell_cli(const std::string& args) {
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell " + args + " 2>&1";
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell ") + args + " 2>&1";
     CliRun r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;

@@ -12,6 +12,7 @@
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -90,7 +91,7 @@ class ServiceTest : public ::testing::Test {
     }
 
     void start_service(const fs::path& config) {
-        service_ = std::make_unique<ChildProcess>(std::string(FIBRECELL_BINARY_DIR) + "/daemon/fibrecelld",
+        service_ = std::make_unique<ChildProcess>(fibrecell::test::binary_path("daemon/fibrecelld"),
                                                   std::vector<std::string>{"--config", config.string()},
                                                   dir_ / ("fibrecelld-" + std::to_string(++starts_) + ".log"));
         ASSERT_TRUE(service_->wait_for_log("fibrecelld: listening on", 30s)) << service_->log();

@@ -3,6 +3,7 @@
 // a state or socket directory that others may write to is refused before anything is read or
 // created in it.
 #include "service_fixture.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 
@@ -16,7 +17,7 @@ namespace {
 
 // Runs fibrecelld with `args` until it exits by itself; its exit code, or -1 if it kept running.
 int exit_code_of(const std::vector<std::string>& args, const fs::path& log, std::string& out) {
-    ChildProcess p(std::string(FIBRECELL_BINARY_DIR) + "/daemon/fibrecelld", args, log);
+    ChildProcess p(fibrecell::test::binary_path("daemon/fibrecelld"), args, log);
     const bool ended = eventually([&] { return !p.running(); }, 30s, 10ms);
     out = p.log();
     return ended && WIFEXITED(p.exit_status()) ? WEXITSTATUS(p.exit_status()) : -1;

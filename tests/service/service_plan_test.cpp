@@ -5,6 +5,7 @@
 // board (its own log of what it ran) and the robot (the RAPID speed data).
 #include "external_cell.hpp"
 #include "service_fixture.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 
@@ -71,7 +72,7 @@ TEST_F(ServiceTest, APlanForACellThatChangedIsRefusedUntilItIsReplanned) {
                           "the job to print it on this cell"));
     EXPECT_FALSE(refused.contains("result"));  // nothing ran
     // Replanned, by the CLI as an operator would, it prints.
-    const std::string cmd = std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell replan " +
+    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell replan ") +
                             std::to_string(id) + " --socket " + socket().string() + " > " +
                             (dir_ / "replan.out").string() + " 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir_ / "replan.out");

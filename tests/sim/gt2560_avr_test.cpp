@@ -8,6 +8,7 @@
 #include "tests/support/eventually.hpp"
 #include "tests/support/fd_lines.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,11 +33,11 @@ using Json = nlohmann::json;
 
 namespace {
 
-const std::string tool = std::string(FIBRECELL_BINARY_DIR) + "/tools/gt2560-avr";
+const std::string tool = fibrecell::test::binary_path("tools/gt2560-avr");
 const std::string firmware_elf =
-    std::string(FIBRECELL_BINARY_DIR) + "/tests/firmware/gt2560-test-firmware.elf";
+    fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware.elf");
 const std::string firmware_hex =
-    std::string(FIBRECELL_BINARY_DIR) + "/tests/firmware/gt2560-test-firmware.hex";
+    fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware.hex");
 
 // The host end of the board's USB serial port: raw bytes, lines with a deadline.
 class Host {

@@ -9,6 +9,7 @@
 #include "drivers/abb/rapid/rapid_writer.hpp"
 #include "drivers/abb/rapid/reader.hpp"
 #include "tests/support/eventually.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,7 +34,7 @@ namespace {
 
 constexpr double scale = 50;  // simulated seconds per real second
 const abb::RobotCellConfig cell;
-const std::string fc_main_path = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
+const std::string fc_main_path = fibrecell::test::source_path("drivers/abb/rapid/FcMain.mod");
 const std::string job_dir = "HOME:/fibrecell/job";
 
 // The 1-based line of FcMain.mod that contains `text`.

@@ -12,6 +12,7 @@
 #include "drivers/abb/rapid/reader.hpp"
 #include "drivers/abb/rws/rws_client.hpp"
 #include "tests/support/eventually.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -48,7 +49,7 @@ namespace {
 constexpr double scale = 25;
 
 std::string fc_main_file() {
-    return std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
+    return fibrecell::test::source_path("drivers/abb/rapid/FcMain.mod");
 }
 
 // A 20 mm PLA square, then a CCF layer with a 60 mm fibre: a head-switch barrier before each layer,

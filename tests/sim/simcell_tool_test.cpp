@@ -5,6 +5,7 @@
 #include "tests/support/piped_process.hpp"
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,7 +29,7 @@ namespace rws = abb::rws;
 namespace {
 
 const std::string binary =
-    std::string(FIBRECELL_BINARY_DIR) + "/tools/fibrecell-simcell/fibrecell-simcell";
+    fibrecell::test::binary_path("tools/fibrecell-simcell/fibrecell-simcell");
 
 // The program as a child process.
 class Child : public fibrecell::test::PipedProcess {

@@ -1,5 +1,5 @@
 #pragma once
-// The project's shared folder beside the repository (FIBRECELL_SHARED_DIR, tests/CMakeLists.txt)
+// The project's shared folder beside the repository (shared_path(), project_paths.hpp)
 // holds the reference FEA data sets (third-party, BSD-3-Clause), which the repository does not
 // carry. A clone without that folder must still test cleanly: a test that needs a data set skips
 // with the reason instead of failing (README.md, "The shared folder").
@@ -11,6 +11,8 @@
 //
 // Benchmarks use the functions alone (they have no GTEST_SKIP).
 
+#include "tests/support/project_paths.hpp"
+
 #include <filesystem>
 #include <string>
 
@@ -18,7 +20,7 @@ namespace fibrecell::test {
 
 // <shared>/data/reference-fea, normalised so that messages show a plain path.
 inline std::filesystem::path reference_fea_dir() {
-    return std::filesystem::path(FIBRECELL_SHARED_DIR "/data/reference-fea").lexically_normal();
+    return std::filesystem::path(shared_path("data/reference-fea")).lexically_normal();
 }
 
 // The files of data set `name` are this stem plus ".tet", "_stress.txt" and "_selection.txt".

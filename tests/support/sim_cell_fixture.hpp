@@ -9,6 +9,7 @@
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,7 +30,7 @@ inline daemon::CellConfig sim_cell_config(const std::filesystem::path& state_dir
     c.simulation.time_scale = time_scale;
     c.simulation.hotend_tau_s = 0.5;
     c.simulation.residency_s = 0.2;
-    c.simulation.main_module = std::string(FIBRECELL_SOURCE_DIR) + "/drivers/abb/rapid/FcMain.mod";
+    c.simulation.main_module = fibrecell::test::source_path("drivers/abb/rapid/FcMain.mod");
     c.robot_io.poll_period = 2ms;
     c.robot_io.stable_reads = 1;
     c.robot_io.response_timeout = 1000ms;  // in-process on a loaded machine: no false link losses

@@ -3,6 +3,7 @@
 // Type=notify with a watchdog, and the template unit gives each cell its own config, state and
 // socket. Skipped where systemd-analyze is not installed.
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
 
@@ -44,13 +45,13 @@ std::pair<int, std::string> run(const std::string& cmd) {
 class SystemdUnitTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        units_ = fs::path(FIBRECELL_BINARY_DIR) / "systemd";
+        units_ = fs::path(fibrecell::test::binary_path("systemd"));
     }
 
     // The unit with its ExecStart binary replaced by the built one, written as `name` in dir_.
     fs::path testable(const std::string& unit, const std::string& name) {
         std::string text = read(units_ / unit);
-        const std::string built = std::string(FIBRECELL_BINARY_DIR) + "/daemon/fibrecelld";
+        const std::string built = fibrecell::test::binary_path("daemon/fibrecelld");
         text = std::regex_replace(text, std::regex("ExecStart=\\S+/fibrecelld"), "ExecStart=" + built);
         std::ofstream(dir_ / name) << text;
         return dir_ / name;
@@ -82,7 +83,7 @@ TEST_F(SystemdUnitTest, TheTemplateGivesEachCellItsOwnConfigStateAndSocket) {
 
 TEST_F(SystemdUnitTest, SystemdAnalyzeVerifiesBothUnits) {
     if (run("command -v systemd-analyze").first != 0) GTEST_SKIP() << "systemd-analyze not installed";
-    if (!fs::exists(fs::path(FIBRECELL_BINARY_DIR) / "daemon/fibrecelld"))
+    if (!fs::exists(fs::path(fibrecell::test::binary_path("daemon/fibrecelld"))))
         GTEST_SKIP() << "fibrecelld not built";
     const auto service = testable("fibrecelld.service", "fibrecelld.service");
     const auto [rc, out] = run("systemd-analyze verify " + service.string());

@@ -13,6 +13,7 @@
 #include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/motion/trajectory_csv.hpp"
+#include "default_main_module.hpp"
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -50,18 +51,6 @@ void apply_cell_config(const std::string& path, sim::SimCellOptions& o) {
     o.signals = robot.signals;
     o.motion.variant = robot.variant;
     o.motion.solver = robot.solver;
-}
-
-// FcMain.mod as installed (<prefix>/share/fibrecell/rapid, next to bin/), else in the source tree
-// this program was built from.
-std::string default_main_module() {
-    std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const auto installed = exe.parent_path().parent_path() / "share/fibrecell/rapid/FcMain.mod";
-        if (std::filesystem::exists(installed, ec)) return installed.string();
-    }
-    return FIBRECELL_DEFAULT_MAIN_MODULE;
 }
 
 // Writes the cell's recorded trajectory to a new CSV file, adding rows every 100 ms (real time) until stopped,
@@ -111,7 +100,7 @@ int main(int argc, char** argv) {
     int modbus_port = 0;
     std::string user;
     std::string password;
-    std::string main_module = default_main_module();
+    std::string main_module = fibrecell::simcell::default_main_module();
     bool start = false;
     std::string log_level;
     std::string trajectory_path;
