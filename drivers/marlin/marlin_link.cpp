@@ -1,6 +1,7 @@
 #include "drivers/marlin/marlin_link.hpp"
 
 #include "config/thread_priority.hpp"
+#include "drivers/marlin/serial_port.hpp"
 
 #include <spdlog/spdlog.h>
 

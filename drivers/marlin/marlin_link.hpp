@@ -11,7 +11,7 @@
 
 #include "drivers/device_state.hpp"
 #include "drivers/marlin/marlin_protocol.hpp"
-#include "drivers/marlin/serial_port.hpp"
+#include "drivers/marlin/serial_settings.hpp"
 
 #include <atomic>
 #include <functional>

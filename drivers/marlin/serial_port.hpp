@@ -7,24 +7,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
 
-#include <stdexcept>
-#include <string>
+#include "drivers/marlin/serial_settings.hpp"
 
 namespace fibrecell::drivers::marlin {
-
-class SerialError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
-
-struct SerialSettings {
-    std::string device;             // /dev/serial/by-id/... or /dev/ttyUSB0
-    int baud_rate = 250000;
-    // HUPCL drops DTR on close, so the next open resets an Arduino board. Off by default: a
-    // daemon restart then does not reboot the board mid-job (it still resets on first open).
-    bool hangup_on_close = false;
-    bool exclusive = true;          // TIOCEXCL: a second opener gets EBUSY
-};
 
 class SerialPort {
   public:
