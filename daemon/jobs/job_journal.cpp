@@ -21,7 +21,7 @@ std::string event_line(const JournalEvent& e, const char* phase) {
     return j.dump();
 }
 
-std::string read_text(const std::filesystem::path& path) {
+std::string read_journal_text(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw JournalError(path.string() + ": cannot read");
     std::ostringstream text;
@@ -34,7 +34,7 @@ std::string read_text(const std::filesystem::path& path) {
 JournalSummary read_journal(const std::filesystem::path& path) {
     JournalSummary s;
     if (!std::filesystem::exists(path)) return s;
-    const std::string text = read_text(path);
+    const std::string text = read_journal_text(path);
     std::size_t start = 0;
     int line = 0;
     while (start < text.size()) {
@@ -82,7 +82,7 @@ JournalSummary read_journal(const std::filesystem::path& path) {
 
 void repair_journal(const std::filesystem::path& path) {
     if (!std::filesystem::exists(path)) return;
-    const std::string text = read_text(path);
+    const std::string text = read_journal_text(path);
     const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
     if (keep == text.size()) {
         // Complete lines only; a torn last line that still ends in '\n' cannot happen (one write).

@@ -46,7 +46,7 @@ struct Frame {
     double height() const { return view.sizes().y() + 2 * margin; }
 };
 
-void append_number(std::string& out, double value) {
+void append_svg_number(std::string& out, double value) {
     double rounded = std::round(value * 1e3) / 1e3;  // 1 um is far below a pixel
     if (rounded == 0) rounded = 0;
     char buffer[32];
@@ -55,9 +55,9 @@ void append_number(std::string& out, double value) {
 }
 
 void append_point(std::string& out, const Frame& frame, const Eigen::Vector2d& p) {
-    append_number(out, p.x() - frame.view.min().x() + frame.margin);
+    append_svg_number(out, p.x() - frame.view.min().x() + frame.margin);
     out += ' ';
-    append_number(out, frame.view.max().y() - p.y() + frame.margin);
+    append_svg_number(out, frame.view.max().y() - p.y() + frame.margin);
 }
 
 void append_polyline_d(std::string& out, const Frame& frame,
@@ -154,19 +154,19 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
         frame.view = Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1));
 
     std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    append_number(out, frame.width() * options.pixels_per_mm);
+    append_svg_number(out, frame.width() * options.pixels_per_mm);
     out += "\" height=\"";
-    append_number(out, frame.height() * options.pixels_per_mm);
+    append_svg_number(out, frame.height() * options.pixels_per_mm);
     out += "\" viewBox=\"0 0 ";
-    append_number(out, frame.width());
+    append_svg_number(out, frame.width());
     out += ' ';
-    append_number(out, frame.height());
+    append_svg_number(out, frame.height());
     // The model point (x0, y0) [mm] is the view's top left corner: the dashboard draws the
     // robot's position on the layer with x - x0, y0 - y.
     out += "\" data-model-x0=\"";
-    append_number(out, frame.view.min().x() - frame.margin);
+    append_svg_number(out, frame.view.min().x() - frame.margin);
     out += "\" data-model-y0=\"";
-    append_number(out, frame.view.max().y() + frame.margin);
+    append_svg_number(out, frame.view.max().y() + frame.margin);
     out += "\">\n<style>";
     out += svg_style;
     out += "</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
@@ -195,7 +195,7 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
         }
     }
     out += "<g stroke-width=\"";
-    append_number(out, options.path_width_mm);
+    append_svg_number(out, options.path_width_mm);
     out += "\">\n";
     for (const Toolpath& path : layer.paths) {
         if (path.points.empty()) continue;

@@ -10,6 +10,7 @@
 #include <vector>
 
 using namespace fibrecell::drivers::abb;
+namespace abb = fibrecell::drivers::abb;
 
 namespace {
 
@@ -187,21 +188,21 @@ TEST(Irb1200Confdata, HandWorkedJointVectors) {
     EXPECT_EQ(quadrant(deg_to_rad(359)), 3);
     EXPECT_EQ(quadrant(deg_to_rad(-270)), -3);
     // Zero pose: x_w = 351 in front, elbow 83.2 in front, J5 = 0 counts as positive.
-    EXPECT_EQ(confdata(g, {}), (ConfData{0, 0, 0, 0}));
+    EXPECT_EQ(confdata(g, {}), (abb::ConfData{0, 0, 0, 0}));
     // Same arm, J1 -0.1 (quadrant -1), J4 90 (1), J6 -190 (-3), J5 -30: cfx 1.
-    EXPECT_EQ(confdata(g, deg({-0.1, 0, 0, 90, -30, -190})), (ConfData{-1, 1, -3, 1}));
+    EXPECT_EQ(confdata(g, deg({-0.1, 0, 0, 90, -30, -190})), (abb::ConfData{-1, 1, -3, 1}));
     // J2 60, J3 -120: x_w = 350 sin 60 - 42 cos 30 + 351 sin 30 = 303.1 - 36.4 + 175.5 = 442.2
     // in front; elbow -30 - 6.8 = -36.8 behind the lower arm: cfx 2 (J5 20) or 3 (J5 -20).
-    EXPECT_EQ(confdata(g, deg({45, 60, -120, -45, 20, 100})), (ConfData{0, -1, 1, 2}));
-    EXPECT_EQ(confdata(g, deg({45, 60, -120, -45, -20, 100})), (ConfData{0, -1, 1, 3}));
+    EXPECT_EQ(confdata(g, deg({45, 60, -120, -45, 20, 100})), (abb::ConfData{0, -1, 1, 2}));
+    EXPECT_EQ(confdata(g, deg({45, 60, -120, -45, -20, 100})), (abb::ConfData{0, -1, 1, 3}));
     // J2 -90: lower arm level backwards, upper arm up: x_w = -350 - 42 = -392 behind axis 1,
     // elbow 83.2 in front of the lower arm: cfx 4 (J5 20) or 5 (J5 -20).
-    EXPECT_EQ(confdata(g, deg({-100, -90, 0, 269, 20, 359})), (ConfData{-2, 2, 3, 4}));
-    EXPECT_EQ(confdata(g, deg({-100, -90, 0, 269, -20, 359})), (ConfData{-2, 2, 3, 5}));
+    EXPECT_EQ(confdata(g, deg({-100, -90, 0, 269, 20, 359})), (abb::ConfData{-2, 2, 3, 4}));
+    EXPECT_EQ(confdata(g, deg({-100, -90, 0, 269, -20, 359})), (abb::ConfData{-2, 2, 3, 5}));
     // J3 -120 at J2 0: x_w = -42 cos 30 - 351 sin 30 = -211.9 behind, elbow -36.8 behind: 6, 7.
     EXPECT_EQ(confdata(g, deg({0, 0, -120, 0, 20, 0})).cfx, 6);
     EXPECT_EQ(confdata(g, deg({0, 0, -120, 0, -20, 0})).cfx, 7);
-    EXPECT_EQ(to_string(ConfData{0, -1, 2, 5}), "[0,-1,2,5]");
+    EXPECT_EQ(to_string(abb::ConfData{0, -1, 2, 5}), "[0,-1,2,5]");
 }
 
 // With reference joints near q, the solver returns q itself (no wrap) on q's own branch.

@@ -4,6 +4,7 @@
 // out here from the toolpaths and the configuration, not taken from the program.
 #include "drivers/abb/program/print_program.hpp"
 #include "drivers/abb/program/point_merge.hpp"
+#include "head_tilt.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 
 using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
+using fibrecell::test::signed_tilt_deg;
 using planner::Head;
 using planner::PathRole;
 using planner::Toolpath;
@@ -20,7 +22,7 @@ using planner::ToolpathLayer;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 ToolpathLayer square_layer(int index, double z, double x0 = 140, double y0 = 140,
                            double side = 20) {
@@ -44,12 +46,6 @@ ToolpathLayer fibre_layer(int index, double z, double length = 100, double step 
 
 Eigen::Vector3d at(const Eigen::Vector2d& p, double z) {
     return {p.x(), p.y(), z};
-}
-
-double signed_tilt_deg(const Eigen::Quaterniond& q) {
-    const Eigen::Vector3d down = -Eigen::Vector3d::UnitZ(), axis = Eigen::Vector3d::UnitX();
-    const Eigen::Vector3d tz = q * Eigen::Vector3d::UnitZ();
-    return std::atan2(axis.dot(down.cross(tz)), down.dot(tz)) * 180 / pi;
 }
 
 std::vector<const ProgramEvent*> events_of(const PrintProgram& p, EventKind k) {

@@ -20,13 +20,13 @@ ValidateOptions chunk_options() {
     return o;
 }
 
-ValidateOptions main_options() {
+ValidateOptions main_module_options() {
     ValidateOptions o;
     o.known_signals = {"goEvent", "diJobReady", "diAbort"};
     return o;
 }
 
-std::string all(const std::vector<Diagnostic>& ds) {
+std::string diagnostics_text(const std::vector<Diagnostic>& ds) {
     std::string out;
     for (const Diagnostic& d : ds) out += format(d) + "\n";
     return out;
@@ -50,8 +50,8 @@ double num_literal(const Expr& e) {
 
 TEST(RapidReader, ChunkModuleParsesIntoTheModel) {
     const CheckResult r = check_module_file(data_dir + "Print_0001.mod", chunk_options());
-    ASSERT_TRUE(r.ok()) << all(r.diagnostics);
-    EXPECT_TRUE(r.diagnostics.empty()) << all(r.diagnostics);
+    ASSERT_TRUE(r.ok()) << diagnostics_text(r.diagnostics);
+    EXPECT_TRUE(r.diagnostics.empty()) << diagnostics_text(r.diagnostics);
     const Module& m = *r.module;
     EXPECT_EQ(m.name, "Print_0001");
     EXPECT_EQ(m.file, "Print_0001.mod");
@@ -168,9 +168,9 @@ TEST(RapidReader, MoveTargetsListEveryTargetWithToolAndWobj) {
 }
 
 TEST(RapidReader, ResidentMainParses) {
-    const CheckResult r = check_module_file(data_dir + "FcMain.mod", main_options());
-    ASSERT_TRUE(r.ok()) << all(r.diagnostics);
-    EXPECT_TRUE(r.diagnostics.empty()) << all(r.diagnostics);
+    const CheckResult r = check_module_file(data_dir + "FcMain.mod", main_module_options());
+    ASSERT_TRUE(r.ok()) << diagnostics_text(r.diagnostics);
+    EXPECT_TRUE(r.diagnostics.empty()) << diagnostics_text(r.diagnostics);
     const Module& m = *r.module;
     ASSERT_EQ(m.routines.size(), 4u);
     EXPECT_EQ(m.find_routine("ChunkName")->kind, RoutineKind::func);
@@ -217,7 +217,7 @@ TEST(RapidReader, ResidentMainParses) {
 }
 
 TEST(RapidReader, EvaluatesExpressionsWithASimulatorsData) {
-    const Module m = read_module_file(data_dir + "FcMain.mod", main_options());
+    const Module m = read_module_file(data_dir + "FcMain.mod", main_module_options());
     const Routine& f = *m.find_routine("ChunkName");
     // The FUNC's body, run by hand the way a simulator would.
     Value s = string_value("");

@@ -37,17 +37,17 @@ std::string good_body() {
            std::string(target) + ", vPrint, tgOn, z0, tNozzle \\WObj:=wobj0;\n";
 }
 
-ValidateOptions options() {
+ValidateOptions validator_options() {
     ValidateOptions o;
     o.known_signals = {"goEvent", "diReady"};
     return o;
 }
 
-std::vector<Diagnostic> diagnose(std::string_view text, const ValidateOptions& o = options()) {
+std::vector<Diagnostic> diagnose(std::string_view text, const ValidateOptions& o = validator_options()) {
     return check_module(text, o).diagnostics;
 }
 
-std::string all(const std::vector<Diagnostic>& ds) {
+std::string indented_diagnostics(const std::vector<Diagnostic>& ds) {
     std::string out;
     for (const Diagnostic& d : ds) out += "  " + format(d) + "\n";
     return out;
@@ -59,22 +59,22 @@ std::string all(const std::vector<Diagnostic>& ds) {
         if (d.rule == rule && d.line == line) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure()
            << "no [" << to_string(rule) << "] on line " << line << "; got:\n"
-           << all(ds);
+           << indented_diagnostics(ds);
 }
 
 }  // namespace
 
 TEST(RapidValidator, GoodModuleHasNoDiagnostics) {
-    const CheckResult r = check_module(chunk("", good_body()), options());
+    const CheckResult r = check_module(chunk("", good_body()), validator_options());
     EXPECT_TRUE(r.ok());
-    EXPECT_TRUE(r.diagnostics.empty()) << all(r.diagnostics);
+    EXPECT_TRUE(r.diagnostics.empty()) << indented_diagnostics(r.diagnostics);
 }
 
 TEST(RapidValidator, CrLfLineEndsAndLowerCaseKeywordsAreFine) {
     std::string text = chunk("", good_body());
     std::string crlf;
     for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
-    EXPECT_TRUE(diagnose(crlf).empty()) << all(diagnose(crlf));
+    EXPECT_TRUE(diagnose(crlf).empty()) << indented_diagnostics(diagnose(crlf));
     EXPECT_TRUE(diagnose("module m\n  proc m()\n    stop;\n  endproc\nendmodule\n").empty());
 }
 
@@ -92,7 +92,7 @@ TEST(RapidValidator, LineEnding) {
 }
 
 TEST(RapidValidator, LineCount) {
-    ValidateOptions o = options();
+    ValidateOptions o = validator_options();
     o.max_lines = 5;
     EXPECT_TRUE(reports(diagnose(chunk("", good_body()), o), Rule::line_count, 6));
     o.max_lines = 11;
@@ -182,7 +182,7 @@ TEST(RapidValidator, ModuleCount) {
 }
 
 TEST(RapidValidator, ModuleName) {
-    ValidateOptions o = options();
+    ValidateOptions o = validator_options();
     o.file_name = "/tmp/job/Print_0002.mod";
     EXPECT_TRUE(reports(diagnose(chunk("", good_body()), o), Rule::module_name, 1));
     o.file_name = "m.mod";  // case-insensitive, like RAPID names
@@ -190,7 +190,7 @@ TEST(RapidValidator, ModuleName) {
     o.check_module_name = false;
     o.file_name = "other.mod";
     EXPECT_TRUE(diagnose(chunk("", good_body()), o).empty());
-    o = options();
+    o = validator_options();
     o.loaded_modules = {"FcMain", "M"};
     EXPECT_TRUE(reports(diagnose(chunk("", good_body()), o), Rule::module_name, 1));
 }
@@ -207,7 +207,7 @@ TEST(RapidValidator, ModuleAttributes) {
 TEST(RapidValidator, DeclarationOrder) {
     const auto ds = diagnose(chunk("", "    Stop;\n    VAR num n;\n    n := 1;\n"));
     EXPECT_TRUE(reports(ds, Rule::declaration_order, 7));
-    EXPECT_EQ(ds.size(), 1u) << all(ds);  // n is still known to the statements after it
+    EXPECT_EQ(ds.size(), 1u) << indented_diagnostics(ds);  // n is still known to the statements after it
 }
 
 TEST(RapidValidator, Declaration) {
@@ -236,7 +236,7 @@ TEST(RapidValidator, Undeclared) {
     EXPECT_TRUE(reports(diagnose(chunk("  CONST num a := b;\n  CONST num b := 1;\n", "")),
                         Rule::undeclared, 5));
     // Signals, external routines and external data come from the options.
-    ValidateOptions o = options();
+    ValidateOptions o = validator_options();
     o.external_routines = {"FcMain:GoSafe"};
     o.external_data = {{"nLayer", "num"}};
     EXPECT_TRUE(diagnose(chunk("", "    GoSafe;\n    Incr nLayer;\n"), o).empty());
@@ -340,7 +340,7 @@ TEST(RapidValidator, QuaternionDigits) {
                        "[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n",
                        ""));
     EXPECT_TRUE(reports(ds, Rule::quaternion_digits, 5));
-    EXPECT_EQ(ds.size(), 1u) << all(ds);
+    EXPECT_EQ(ds.size(), 1u) << indented_diagnostics(ds);
     EXPECT_TRUE(reports(diagnose(chunk("  CONST orient q := [0.5,0.5,0.5,0.5];\n", "")),
                         Rule::quaternion_digits, 5));
     // Exponent form counts: 7.07107E-01 has 6 decimals; negative components are fine.
@@ -397,7 +397,7 @@ TEST(RapidValidator, LateCall) {
     EXPECT_TRUE(
         reports(diagnose(chunk("", "    %\"Print_0002:Print_0002\"%;\n")), Rule::late_call, 6));
     EXPECT_TRUE(reports(diagnose(chunk("", "    %\"a:b:c\"%;\n")), Rule::late_call, 6));
-    ValidateOptions o = options();
+    ValidateOptions o = validator_options();
     o.external_routines = {"Print_0002:Print_0002"};
     EXPECT_TRUE(diagnose(chunk("", "    %\"Print_0002:Print_0002\"%;\n"), o).empty());
     EXPECT_TRUE(diagnose(chunk("  PROC Sub()\n  ENDPROC\n", "    %\"M:Sub\"%;\n")).empty());
@@ -407,14 +407,14 @@ TEST(RapidValidator, LateCall) {
 
 TEST(RapidValidator, ReadModuleThrowsTheFirstError) {
     try {
-        read_module(chunk("  VAR num n := 1\n", ""), options());
+        read_module(chunk("  VAR num n := 1\n", ""), validator_options());
         FAIL() << "no throw";
     } catch (const RapidError& e) {
         EXPECT_EQ(e.rule(), Rule::syntax);
         EXPECT_EQ(e.line(), 6u);
         EXPECT_NE(std::string(e.what()).find("[syntax]"), std::string::npos);
     }
-    ValidateOptions o = options();
+    ValidateOptions o = validator_options();
     o.file_name = "M.mod";
     EXPECT_NO_THROW(read_module(chunk("", good_body()), o));
     // Warnings do not throw.

@@ -9,6 +9,7 @@
 #include "drivers/abb/kinematics/joint_solver.hpp"
 #include "drivers/abb/rapid/reader.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "head_tilt.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,7 @@
 
 using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
+using fibrecell::test::signed_tilt_deg;
 namespace rapid = fibrecell::drivers::abb::rapid;
 using planner::Head;
 using planner::PathRole;
@@ -31,7 +33,7 @@ using planner::ToolpathLayer;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Two layers: a 20 mm PLA square and an infill line, then a CCF layer with a 100 mm fibre, gently
 // curved so that no point merges away (radius 250 mm: 0.05 mm sagitta per 10 mm step), and a
@@ -226,12 +228,6 @@ Eigen::Vector3d tcp_through_arm(const RobotCellConfig& cell, const rapid::MoveTa
     const Eigen::Isometry3d tcp_in_bed =
         wobj.inverse() * forward_kinematics(robot.geometry, ik.joints) * tool;
     return tcp_in_bed.translation();
-}
-
-double signed_tilt_deg(const Eigen::Quaterniond& q, const Eigen::Vector3d& axis) {
-    const Eigen::Vector3d down = -Eigen::Vector3d::UnitZ();
-    const Eigen::Vector3d tz = q.normalized() * Eigen::Vector3d::UnitZ();
-    return std::atan2(axis.dot(down.cross(tz)), down.dot(tz)) * 180 / pi;
 }
 
 // The point `rest` mm of arc length before the end of a toolpath (closed: back at its start).

@@ -6,6 +6,7 @@
 #include "config/yaml_section.hpp"
 #include "drivers/abb/kinematics/joint_solver.hpp"
 #include "tests/support/project_paths.hpp"
+#include "head_tilt.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 
 using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
+using fibrecell::test::signed_tilt_deg;
 
 namespace {
 
@@ -46,12 +48,6 @@ Eigen::Isometry3d tcp_pose(const Eigen::Vector3d& p, const Eigen::Quaterniond& q
 }
 
 // Signed angle [deg] from the bed's -z to the tool z axis, about `axis` (bed frame).
-double signed_tilt_deg(const Eigen::Quaterniond& q, const Eigen::Vector3d& axis) {
-    const Eigen::Vector3d down = -Eigen::Vector3d::UnitZ();
-    const Eigen::Vector3d tz = q * Eigen::Vector3d::UnitZ();
-    return std::atan2(axis.dot(down.cross(tz)), down.dot(tz)) * 180 / std::numbers::pi;
-}
-
 }  // namespace
 
 TEST(RobotConfig, EmptySectionGivesTheSimulatedCell) {

@@ -27,7 +27,7 @@ std::string error_of(const std::string& yaml) {
     return "";
 }
 
-const std::string kToken = "0123456789abcdef0123";
+const std::string kConfigToken = "0123456789abcdef0123";
 
 }  // namespace
 
@@ -59,7 +59,7 @@ TEST(ApiConfig, ReadsEveryKey) {
         "    host: 0.0.0.0\n"
         "    port: 7500\n"
         "    token: " +
-        kToken +
+        kConfigToken +
         "\n"
         "    auth_timeout_ms: 500\n");
     EXPECT_EQ(c.socket_path, "/tmp/fc/api.sock");
@@ -72,7 +72,7 @@ TEST(ApiConfig, ReadsEveryKey) {
     EXPECT_TRUE(c.tcp.enabled);
     EXPECT_EQ(c.tcp.host, "0.0.0.0");
     EXPECT_EQ(c.tcp.port, 7500);
-    EXPECT_EQ(c.tcp.token, kToken);
+    EXPECT_EQ(c.tcp.token, kConfigToken);
     EXPECT_EQ(c.tcp.auth_timeout.count(), 500);
 }
 
@@ -114,7 +114,7 @@ TEST(ApiConfig, TcpNeedsAToken) {
     EXPECT_NE(error_of("api: {tcp: {token: short}}\n").find("api.tcp.token: must be at least 16"),
               std::string::npos);
     const std::string both =
-        error_of("api: {tcp: {token: " + kToken + ", token_file: /etc/token}}\n");
+        error_of("api: {tcp: {token: " + kConfigToken + ", token_file: /etc/token}}\n");
     EXPECT_NE(both.find("api.tcp.token_file: give token or token_file, not both"),
               std::string::npos)
         << both;
@@ -122,9 +122,9 @@ TEST(ApiConfig, TcpNeedsAToken) {
 
 TEST(ApiConfig, TokenFileIsReadAndTrimmed) {
     const fibrecell::test::TempDir dir("api-token");
-    const auto path = dir.write("token", std::string("  ") + kToken + "  \n# comment line\n");
+    const auto path = dir.write("token", std::string("  ") + kConfigToken + "  \n# comment line\n");
     const ApiConfig c = load("api: {tcp: {enabled: true, token_file: " + path.string() + "}}\n");
-    EXPECT_EQ(c.tcp.token, kToken);
+    EXPECT_EQ(c.tcp.token, kConfigToken);
     std::filesystem::remove(path);
     const std::string e = error_of("api: {tcp: {token_file: " + path.string() + "}}\n");
     EXPECT_NE(
@@ -191,22 +191,22 @@ TEST(ApiConfig, TheDashboardsHttpSection) {
     EXPECT_EQ(off.http.port, 7480);
     EXPECT_EQ(off.http.web_root, "");
 
-    const ApiConfig c = load("api:\n  http:\n    enabled: true\n    port: 0\n    token: " + kToken +
+    const ApiConfig c = load("api:\n  http:\n    enabled: true\n    port: 0\n    token: " + kConfigToken +
                              "\n    session_hours: 2\n    login_failures_per_minute: 9\n"
                              "    secure_cookie: true\n    web_root: /srv/fibrecell-web\n");
     EXPECT_TRUE(c.http.enabled);
     EXPECT_EQ(c.http.port, 0);
-    EXPECT_EQ(c.http.token, kToken);
+    EXPECT_EQ(c.http.token, kConfigToken);
     EXPECT_EQ(c.http.session_lifetime, std::chrono::hours(2));
     EXPECT_EQ(c.http.login_failures_per_minute, 9);
     EXPECT_TRUE(c.http.secure_cookie);
     EXPECT_EQ(c.http.web_root, "/srv/fibrecell-web");
 
     test::TempDir dir("api-http-token");
-    std::ofstream(dir / "dashboard.token") << "  " << kToken << "  \nsecond line\n";
+    std::ofstream(dir / "dashboard.token") << "  " << kConfigToken << "  \nsecond line\n";
     EXPECT_EQ(load("api:\n  http: {token_file: " + (dir / "dashboard.token").string() + "}\n").http.token,
-              kToken);
-    EXPECT_EQ(read_token_file((dir / "dashboard.token").string()), kToken);
+              kConfigToken);
+    EXPECT_EQ(read_token_file((dir / "dashboard.token").string()), kConfigToken);
 
     EXPECT_NE(error_of("api:\n  http: {enabled: true}\n").find("api.http.enabled: the dashboard needs a token"),
               std::string::npos);

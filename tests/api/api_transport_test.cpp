@@ -20,7 +20,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-const std::string kToken = "s3cret-token-0123456789";
+const std::string kTcpToken = "s3cret-token-0123456789";
 
 std::string client_error(const ApiEndpoint& endpoint) {
     try {
@@ -34,7 +34,7 @@ std::string client_error(const ApiEndpoint& endpoint) {
 class ApiTransportTest : public fibrecell::test::ApiServerTest {
   protected:
     ApiTransportTest() : ApiServerTest("api-tr") {
-        config_.tcp.token = kToken;
+        config_.tcp.token = kTcpToken;
         config_.tcp.port = 0;  // ephemeral
     }
     void add_methods(ApiServer& server) override {
@@ -146,7 +146,7 @@ TEST_F(ApiTransportTest, ClientSaysWhenTheServiceIsNotRunning) {
     EXPECT_EQ(
         client_error({.socket_path = (dir_ / "nodir" / "x.sock").string()}),
         "fibrecelld is not running (no socket at " + (dir_ / "nodir" / "x.sock").string() + ")");
-    EXPECT_EQ(client_error({.host = "127.0.0.1", .port = 1, .token = kToken}),
+    EXPECT_EQ(client_error({.host = "127.0.0.1", .port = 1, .token = kTcpToken}),
               "fibrecelld is not listening on 127.0.0.1:1");
 }
 
@@ -179,7 +179,7 @@ TEST_F(ApiTransportTest, TcpWithTheRightTokenWorks) {
     config_.tcp.enabled = true;
     start();
     ASSERT_NE(server_->tcp_port(), 0);
-    auto c = ApiClient::connect(tcp(kToken));
+    auto c = ApiClient::connect(tcp(kTcpToken));
     const json who = c.call("whoami");
     EXPECT_EQ(who["tcp"], true);
     EXPECT_NE(who["peer"].get<std::string>().find("tcp 127.0.0.1:"), std::string::npos);
@@ -205,7 +205,7 @@ TEST_F(ApiTransportTest, TcpWithoutTokenIsUnauthorizedUntilAuth) {
     } catch (const ApiCallError& e) {
         EXPECT_EQ(e.code(), errc::unauthorized);
     }
-    EXPECT_EQ(c.call("server.auth", {{"token", kToken}}), (json{{"authenticated", true}}));
+    EXPECT_EQ(c.call("server.auth", {{"token", kTcpToken}}), (json{{"authenticated", true}}));
     EXPECT_EQ(c.call("echo", {{"x", 3}}), (json{{"x", 3}}));
 }
 
@@ -241,7 +241,7 @@ TEST_F(ApiTransportTest, ABatchOfGuessesGetsOneTryToo) {
                  R"(,"method":"server.auth","params":{"token":"guess-)" + std::to_string(i) +
                  R"("}},)";
     batch += R"({"jsonrpc":"2.0","id":50,"method":"server.auth","params":{"token":")" +
-             std::string(kToken) + R"("}},)";
+             std::string(kTcpToken) + R"("}},)";
     batch += R"({"jsonrpc":"2.0","id":51,"method":"whoami"}])";
     c.send_line(batch);
     const auto m = c.read_message(5s);
@@ -271,12 +271,12 @@ TEST_F(ApiTransportTest, TcpConnectionThatNeverAuthenticatesIsClosed) {
 TEST_F(ApiTransportTest, AReloadedTokenAppliesToNewConnections) {
     config_.tcp.enabled = true;
     start();
-    auto before = ApiClient::connect(tcp(kToken));
+    auto before = ApiClient::connect(tcp(kTcpToken));
     ApiConfig reloaded = config_;
     reloaded.tcp.token = "another-token-0123456789";
     server_->update_limits(reloaded);
     EXPECT_EQ(before.call("echo", {{"x", 1}}), (json{{"x", 1}}));  // stays authenticated
-    EXPECT_THROW(ApiClient::connect(tcp(kToken)), ApiCallError);
+    EXPECT_THROW(ApiClient::connect(tcp(kTcpToken)), ApiCallError);
     auto after = ApiClient::connect(tcp(reloaded.tcp.token));
     EXPECT_EQ(after.call("echo", {{"x", 2}}), (json{{"x", 2}}));
 }

@@ -17,8 +17,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double kTol = 1e-9;
-
 // A 20 x 10 x 10 block held at x = 0 and pushed sideways at x = 20.
 struct Block {
     TetMesh mesh = box_mesh({20, 10, 10}, 4, 2, 2);

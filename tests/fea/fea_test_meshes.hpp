@@ -18,6 +18,8 @@
 
 namespace fibrecell::planner::fea_test {
 
+inline constexpr double kTol = 1e-9;  // [mm], for picking vertices on a face
+
 // Position [mm] of grid point (i, j, k).
 using GridMap = std::function<Eigen::Vector3d(int i, int j, int k)>;
 

@@ -17,8 +17,6 @@ using namespace fibrecell::planner::fea_test;
 
 namespace {
 
-constexpr double kTol = 1e-9;  // [mm], for picking vertices on a face
-
 // A bar along x, [0, l] x [0, side] x [0, side], clamped at x = 0 and pulled at x = l.
 struct Bar {
     double length = 100, side = 10;

@@ -8,7 +8,7 @@
 #include <set>
 
 using namespace fibrecell::planner;
-using fibrecell::planner::testing::grid_layer;
+using fibrecell::planner::layer_test::grid_layer;
 
 namespace {
 

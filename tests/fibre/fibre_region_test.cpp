@@ -5,6 +5,7 @@
 #include "planner/fibre/fibre_region.hpp"
 
 #include "../toolpaths/toolpath_test_shapes.hpp"
+#include "spacing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@ using test::circle_hole;
 using test::rectangle;
 using test::segment_distance;
 
-constexpr double W = 1.0;
+using ::fibrecell::test::W;
 
 std::vector<Segment2> edges_of(const Polygon& loop) {
     std::vector<Segment2> out;

@@ -2,6 +2,7 @@
 // along it, is cut; measured here on points resampled from the output, brute force.
 
 #include "planner/fibre/laid_fibre.hpp"
+#include "spacing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +13,7 @@ using namespace fibrecell::planner;
 
 namespace {
 
-constexpr double W = 1.0;
+using ::fibrecell::test::W;
 
 struct Sample {
     Eigen::Vector2d p;

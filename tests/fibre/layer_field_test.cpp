@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 using namespace fibrecell::planner;
-using fibrecell::planner::testing::centre;
-using fibrecell::planner::testing::grid_layer;
+using fibrecell::planner::layer_test::centre;
+using fibrecell::planner::layer_test::grid_layer;
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include <functional>
 
-namespace fibrecell::planner::testing {
+namespace fibrecell::planner::layer_test {
 
 inline LayerMesh grid_layer(double width, double height, int nx, int ny,
                             const std::function<bool(const Eigen::Vector2d&)>& keep_cell = {}) {
@@ -38,4 +38,4 @@ inline Eigen::Vector2d centre(const LayerMesh& m, int f) {
     return (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
 }
 
-}  // namespace fibrecell::planner::testing
+}  // namespace fibrecell::planner::layer_test

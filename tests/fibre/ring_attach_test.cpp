@@ -4,6 +4,7 @@
 #include "planner/fibre/ring_attach.hpp"
 
 #include "../toolpaths/toolpath_test_shapes.hpp"
+#include "spacing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@
 namespace fibrecell::planner {
 namespace {
 
-constexpr double W = 1.0;
+using ::fibrecell::test::W;
 const Eigen::Vector2d pin(20, 15);
 
 // The ring 1.5W round a pin hole of radius 5, points 0.5 mm apart: 40.8 mm, under 42.

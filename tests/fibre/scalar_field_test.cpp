@@ -7,8 +7,8 @@
 #include <cmath>
 
 using namespace fibrecell::planner;
-using fibrecell::planner::testing::centre;
-using fibrecell::planner::testing::grid_layer;
+using fibrecell::planner::layer_test::centre;
+using fibrecell::planner::layer_test::grid_layer;
 
 TEST(ScalarField, UniformTensionAlongXGivesLevelLinesAlongX) {
     const LayerMesh m = grid_layer(30, 10, 15, 5);

@@ -21,7 +21,7 @@ std::string msh41() {
 // The test files hold the unit cube with scrambled Gmsh node and element tags, an extra node used
 // only by a triangle, physical groups "fixed" (bottom triangles) and 7 (all tets, unnamed), and
 // views "strain" (6 components) and "stress" (9 components, entries in shuffled order).
-void expect_cube(const VolumeModel& m) {
+void expect_msh_cube(const VolumeModel& m) {
     ASSERT_EQ(m.mesh.vertex_count(), 8u) << "the node used only by a triangle is dropped";
     for (int i = 0; i < 8; ++i)
         EXPECT_EQ(m.mesh.vertices[i], Eigen::Vector3d(i & 1, (i >> 1) & 1, (i >> 2) & 1)) << i;
@@ -47,21 +47,21 @@ class MshReader : public ::testing::Test {
 }  // namespace
 
 TEST_F(MshReader, ReadsMsh22WithGroupsTagRemappingAndStress) {
-    expect_cube(read_msh(io_test::data_path("cube22.msh")));
+    expect_msh_cube(read_msh(io_test::data_path("cube22.msh")));
 }
 
 TEST_F(MshReader, ReadsMsh41WithEntitiesGroupsAndStress) {
-    expect_cube(read_msh(io_test::data_path("cube41.msh")));
+    expect_msh_cube(read_msh(io_test::data_path("cube41.msh")));
 }
 
 TEST_F(MshReader, SixComponentViewIsUsedWhenItIsTheOnlyOne) {
     std::string text = msh22();
     text = text.substr(0, text.rfind("$ElementData"));  // drop the "stress" view
-    expect_cube(read_msh(dir_.write("strain.msh", text)));
+    expect_msh_cube(read_msh(dir_.write("strain.msh", text)));
 }
 
 TEST_F(MshReader, NonFiniteValuesInAnIgnoredViewDoNoHarm) {
-    expect_cube(read_msh(
+    expect_msh_cube(read_msh(
         dir_.write("ok.msh", replaced(msh22(), "40 10 20 30 1 3 2", "40 nan 20 30 1 3 2"))));
 }
 

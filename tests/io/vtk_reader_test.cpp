@@ -30,7 +30,7 @@ std::string at_line(std::size_t line) {
     return "line " + std::to_string(line) + ":";
 }
 
-void expect_cube(const VolumeModel& m) {
+void expect_vtk_cube(const VolumeModel& m) {
     ASSERT_EQ(m.mesh.vertex_count(), 8u);
     for (int i = 0; i < 8; ++i)
         EXPECT_EQ(m.mesh.vertices[i], Eigen::Vector3d(i & 1, (i >> 1) & 1, (i >> 2) & 1)) << i;
@@ -202,7 +202,7 @@ class VtkReader : public ::testing::Test {
 }  // namespace
 
 TEST_F(VtkReader, ReadsAsciiCubeSkippingTrianglesAndOtherArrays) {
-    expect_cube(read_vtk(io_test::data_path("cube.vtk")));
+    expect_vtk_cube(read_vtk(io_test::data_path("cube.vtk")));
 }
 
 TEST_F(VtkReader, BinaryFilesReadLikeTheAsciiFile) {
@@ -217,7 +217,7 @@ TEST_F(VtkReader, BinaryFilesReadLikeTheAsciiFile) {
                 const std::string path =
                     dir_.write("cube.vtk", binary_cube({double_points, offsets, layout}));
                 const VolumeModel binary = read_vtk(path);
-                expect_cube(binary);
+                expect_vtk_cube(binary);
                 EXPECT_EQ(binary.mesh.vertices, ascii.mesh.vertices);
                 EXPECT_EQ(binary.mesh.tets, ascii.mesh.tets);
                 EXPECT_EQ(*binary.stress, *ascii.stress);
@@ -225,7 +225,7 @@ TEST_F(VtkReader, BinaryFilesReadLikeTheAsciiFile) {
 }
 
 TEST_F(VtkReader, ReadsABinaryFileWrittenByAnotherProgram) {
-    expect_cube(read_vtk(io_test::data_path("cube_binary.vtk")));  // by Python's struct module
+    expect_vtk_cube(read_vtk(io_test::data_path("cube_binary.vtk")));  // by Python's struct module
 }
 
 TEST_F(VtkReader, ReadsVersion51OffsetsLayoutInAscii) {
@@ -237,7 +237,7 @@ TEST_F(VtkReader, ReadsVersion51OffsetsLayoutInAscii) {
                  "CONNECTIVITY vtktypeint64\n0 1 3 7 0 5 1 7 0 1 3 0 3 2 7 0 2 6 7 0 4 5 7 "
                  "0 6 4 7 0 3 2\n"
                  "METADATA\nINFORMATION 0\n\n");
-    expect_cube(read_vtk(dir_.write("cube51.vtk", text)));
+    expect_vtk_cube(read_vtk(dir_.write("cube51.vtk", text)));
 }
 
 TEST_F(VtkReader, SixComponentOrderIsXxYyZzXyYzXz) {

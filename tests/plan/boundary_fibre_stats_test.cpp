@@ -14,7 +14,7 @@ namespace {
 // A 40 x 40 mm square in 1 mm cells and its outline edges, counter-clockwise from (0, 0).
 struct Square {
     static constexpr int n = 40;
-    LayerMesh mesh = fibrecell::planner::testing::grid_layer(n, n, n, n);
+    LayerMesh mesh = fibrecell::planner::layer_test::grid_layer(n, n, n, n);
     std::vector<std::array<int, 2>> edges;
 
     Square() {
@@ -37,10 +37,10 @@ Toolpath ring_at(double d) {
 }  // namespace
 
 // Fibre counts within 1.5W + 0.2 mm = 1.7 mm of the edge; the edge is judged every 0.5 mm.
-constexpr double reach = 1.7, tolerance = 8 * 0.25 / 160;
+constexpr double kReach = 1.7, kTolerance = 8 * 0.25 / 160;
 
 // How far past the end of a path at 1.5 mm from an edge the edge still has it within reach.
-const double past_end = std::sqrt(reach * reach - 1.5 * 1.5);  // 0.8 mm
+const double past_end = std::sqrt(kReach * kReach - 1.5 * 1.5);  // 0.8 mm
 
 TEST(BoundaryFibreStats, ARingAtOneAndAHalfWCoversItsBoundary) {
     const Square sq;
@@ -48,7 +48,7 @@ TEST(BoundaryFibreStats, ARingAtOneAndAHalfWCoversItsBoundary) {
     EXPECT_NEAR(s.edge_mm, 160.0, 1e-9);
     // All but the square's corners, which are 1.5 sqrt(2) from the ring's: 1.5 - 0.8 mm of
     // either edge at each.
-    EXPECT_NEAR(s.coverage(), 1.0 - 8 * (1.5 - past_end) / 160, tolerance);
+    EXPECT_NEAR(s.coverage(), 1.0 - 8 * (1.5 - past_end) / 160, kTolerance);
     EXPECT_EQ(s.rings, 1);
     EXPECT_NEAR(s.ring_mm, 4 * 37.0, 1e-9);
     EXPECT_NEAR(s.ring_distance_quantile(0.5), 1.5, 1e-9);
@@ -70,11 +70,11 @@ TEST(BoundaryFibreStats, AStressPathAlongPartOfTheEdgeCoversThatPart) {
     const Toolpath joined{PathRole::fibre, false, {{5, 1.5}, {35, 1.5}}};
     BoundaryFibreStats s = boundary_fibre_stats(sq.mesh, sq.edges, {joined}, 1.0);
     const double along = 30 + 2 * past_end;
-    EXPECT_NEAR(s.coverage(), along / 160, tolerance);
+    EXPECT_NEAR(s.coverage(), along / 160, kTolerance);
     EXPECT_EQ(s.rings, 0);  // not a fibre-boundary path
     // Two layers add up.
     s += boundary_fibre_stats(sq.mesh, sq.edges, {ring_at(1.5)}, 1.0);
-    EXPECT_NEAR(s.coverage(), (along + 160 - 8 * (1.5 - past_end)) / 320, tolerance);
+    EXPECT_NEAR(s.coverage(), (along + 160 - 8 * (1.5 - past_end)) / 320, kTolerance);
     EXPECT_EQ(s.rings, 1);
 }
 

@@ -13,7 +13,7 @@ using namespace fibrecell::planner;
 namespace {
 
 struct Layer {
-    LayerMesh mesh = fibrecell::planner::testing::grid_layer(40, 40, 8, 8);
+    LayerMesh mesh = fibrecell::planner::layer_test::grid_layer(40, 40, 8, 8);
     std::vector<Eigen::Vector3d> v_e =
         std::vector<Eigen::Vector3d>(mesh.triangles.size(), Eigen::Vector3d::UnitX());
     std::vector<double> sigma_e = std::vector<double>(mesh.triangles.size(), 1.0);

@@ -16,7 +16,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double time_scale = 10;
+constexpr double board_time_scale = 10;
 
 // The commands of the board's --log (time, tab, command), in order.
 std::vector<std::string> board_commands(const fs::path& log) {
@@ -35,9 +35,9 @@ bool starts_with(const std::string& s, const char* prefix) { return s.rfind(pref
 }  // namespace
 
 TEST_F(ServiceTest, ABoardThatRestartsMidPrintIsConnectedAgainByTheResume) {
-    ExternalCell devices(dir_, time_scale, /*board_control=*/true);
+    ExternalCell devices(dir_, board_time_scale, /*board_control=*/true);
     ASSERT_TRUE(devices.up());
-    std::ofstream(dir_ / "cell.yaml") << devices.cell_yaml(read_file(write_config("", time_scale)));
+    std::ofstream(dir_ / "cell.yaml") << devices.cell_yaml(read_file(write_config("", board_time_scale)));
     start_service(dir_ / "cell.yaml");
     auto c = client();
     const std::int64_t id = submit_bar(c, true);

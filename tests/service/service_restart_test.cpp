@@ -27,7 +27,7 @@ using namespace fibrecell::test;
 
 namespace {
 
-constexpr double time_scale = 10;
+constexpr double restart_time_scale = 10;
 
 struct Journal {
     std::vector<std::int64_t> before_resume, after_resume;  // confirmed sequences per run
@@ -144,12 +144,12 @@ Journal read_journal(const fs::path& p) {
 }  // namespace
 
 TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats) {
-    ExternalCell devices(dir_, time_scale);
+    ExternalCell devices(dir_, restart_time_scale);
     ASSERT_TRUE(devices.up());
     const fs::path& board_log = devices.board_log();
     const fs::path& trajectory = devices.trajectory();
     std::ofstream(dir_ / "cell.yaml")
-        << devices.cell_yaml(read_file(write_config("", time_scale)),
+        << devices.cell_yaml(read_file(write_config("", restart_time_scale)),
                              "print: {heartbeat_timeout_s: 0.3}\n");
 
     start_service(dir_ / "cell.yaml");

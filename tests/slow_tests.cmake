@@ -1,0 +1,35 @@
+# Read by CTest after the discovered tests (TEST_INCLUDE_FILES, tests/CMakeLists.txt): the tests
+# that take longest start first, so that the suite's wall time is set by the longest one and not
+# by a long one that happened to start last. CTest orders by COST, highest first; after a run it
+# orders by the times it measured (Testing/Temporary/CTestCostData.txt), but a fresh build
+# directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
+# them again); a test missing here only starts later.
+cmake_policy(PUSH)
+cmake_policy(SET CMP0064 NEW)  # if(TEST ...)
+set(fibrecell_slow_tests
+    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=60"
+    "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=43"
+    "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=25"
+    "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=18"
+    "ExampleGuarantees.Loop=18"
+    "ServiceTest.TheJobsSettingsReachTheBoardAndTheRobot=10"
+    "ReferenceGuarantees.YogaNew=10"
+    "ReferenceGuarantees.Bunnyhead=9"
+    "ServiceTest.APlanForACellThatChangedIsRefusedUntilItIsReplanned=9"
+    "ServiceTest.AJobIsPlannedAndPrintedWhileTwoClientsWatchIt=9"
+    "ServiceTest.APrintThatFellShortOfItsPlanEndsCompletedWithWarnings=9"
+    "ServiceTest.AJobThatCannotBePlannedFailsWhileAnotherPrints=9"
+    "Gt2560Avr.CountsStepPulsesIntoMillimetresAtTheFeedRate=8"
+    "PrintCellTest.AFourCutJobRunsTheExactBoardLogAtTimeScale20=8"
+    "FibreBudget.ABaselineBudgetTheLayerCannotHoldIsApproachedAndReported=7"
+    "SyncFaultTest.ANewEngineResumesAnInterruptedFibreFeedWithNothingLostOrRepeated=7"
+    "ServiceTest.APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst=7")
+foreach(entry IN LISTS fibrecell_slow_tests)
+    string(REPLACE "=" ";" entry "${entry}")
+    list(GET entry 0 name)
+    list(GET entry 1 seconds)
+    if(TEST "${name}")
+        set_tests_properties("${name}" PROPERTIES COST ${seconds})
+    endif()
+endforeach()
+cmake_policy(POP)
