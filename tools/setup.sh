@@ -23,11 +23,23 @@ packages=(
     gcc-avr avr-libc          # the GT2560 test firmware (tests/firmware)
     nodejs                    # the dashboard's npm packages (web/package.json)
 )
+# What makes builds fast (docs/building.md): a compiler cache and a faster linker; the build uses
+# them when they are installed, and works without them.
+build_packages=(ccache mold)
 # The dashboard's browser tests (tests/web): Debian's Chromium, driven by puppeteer-core.
 test_packages=(chromium fonts-dejavu-core)
 
 # shellcheck source=tools/apt-install.sh
 source "$root/tools/apt-install.sh"
+
+# phase NAME COMMAND...: runs COMMAND, then says how long it took (a slow phase is found at a
+# glance; docs/building.md says what each should take).
+phase() {
+    local name=$1 start=$SECONDS
+    shift
+    "$@"
+    echo "setup: $name took $((SECONDS - start)) s"
+}
 
 # The dashboard's packages from the npm registry, exactly as web/package-lock.json pins them;
 # again only when the lockfile changed. The pages use them as they are: no bundler, no build step.
@@ -87,24 +99,30 @@ test_dir="$root/build/test"
 
 case "${1:-demo}" in
     build)
-        install_missing setup "${packages[@]}"
-        install_web_packages
-        configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
+        phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}"
+        phase "the dashboard's packages" install_web_packages
+        phase "the Release build" configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release \
+            -DFIBRECELL_TESTS=OFF
         ;;
     demo)
-        install_missing setup "${packages[@]}"
-        install_web_packages
-        configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release -DFIBRECELL_TESTS=OFF
+        phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}"
+        phase "the dashboard's packages" install_web_packages
+        phase "the Release build" configure_and_build "$release_dir" -DCMAKE_BUILD_TYPE=Release \
+            -DFIBRECELL_TESTS=OFF
         run_demo
         ;;
     test)
-        install_missing setup "${packages[@]}" "${test_packages[@]}"
-        install_web_packages
-        configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}" \
+            "${test_packages[@]}"
+        phase "the dashboard's packages" install_web_packages
+        phase "the sanitizer build" configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
             -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF
         cd "$test_dir"
-        # The soak test (label soak, tests/print/print_soak_test.cpp) is run by hand: ctest -L soak
-        ctest --output-on-failure --parallel "$jobs" --timeout 300 -LE soak
+        # The soak test (label soak, tests/print/print_soak_test.cpp) is run by hand: ctest -L soak.
+        # One slot more than cores: the print through the board simulator (real time, mostly
+        # waiting) runs beside the rest instead of taking a core's place (docs/building.md).
+        phase "the test suite" ctest --output-on-failure --parallel "$((jobs + 1))" --timeout 300 \
+            -LE soak
         ;;
     *)
         echo "usage: tools/setup.sh [demo|test|build]" >&2
