@@ -4,8 +4,8 @@
 #   - the build: every step's time from .ninja_log (the last run of each output), compile and
 #     link totals, the time per library or test folder, and the N most expensive translation
 #     units, each with the heavy third-party headers it includes (from ninja's deps log);
-#   - the tests: the slowest N from CTest's Testing/Temporary/CTestCostData.txt (the last run's
-#     seconds per test) and their sum.
+#   - the tests: the slowest N of the last ctest run (Testing/Temporary/LastTest.log) and the sum
+#     of all their times.
 #
 #   tools/build-times.sh BUILD_DIR [N]      N defaults to 20 translation units and 30 tests
 #
@@ -42,14 +42,17 @@ while read -r seconds obj; do
     printf "%7.1f  %s\n          %s\n" "$seconds" "$obj" "${libs:-(no heavy headers)}"
 done < <(grep '\.o$' <<<"$steps" | head -"$top")
 
-costs="$dir/Testing/Temporary/CTestCostData.txt"
+# LastTest.log has the measured time of each test the last ctest run ran (CTestCostData.txt is a
+# running average that the COST properties of tests/slow_tests.cmake seed).
+last="$dir/Testing/Temporary/LastTest.log"
 echo
-if [ -f "$costs" ]; then
+if [ -f "$last" ]; then
     n=$((top > 30 ? top : 30))
-    echo "== tests: the $n slowest of the last run (seconds each; $costs)"
-    awk 'NF == 3 { print $3, $1 }' "$costs" | sort -rn | awk -v n="$n" '
+    echo "== tests: the $n slowest of the last ctest run (seconds each; $last)"
+    awk '/^[0-9]+\/[0-9]+ Testing: / { name = $3 } /^Test time = / { print $4, name }' "$last" |
+        sort -rn | awk -v n="$n" '
         { sum += $1; if (NR <= n) printf "%7.1f  %s\n", $1, $2; count++ }
         END { printf "%d tests, %.0f s in all (the wall time is less: CTest runs them side by side)\n", count, sum }'
 else
-    echo "== tests: no $costs (run ctest in $dir first)"
+    echo "== tests: no $last (run ctest in $dir first)"
 fi
