@@ -82,7 +82,6 @@ struct PrintRunner::Active {
     std::shared_ptr<jobs::JobJournal> journal;
     std::unique_ptr<print::PrintSession> session;
     Clock::time_point started = Clock::now();
-    std::optional<Clock::time_point> paused_since;
     bool heaters_off = false;
     bool fault_reported = false;
     bool reselect_tool = false;  // the board restarted: its tool is the default one
@@ -95,7 +94,8 @@ struct PrintRunner::Active {
 
 PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const CellConfig& cell,
                          PrintRunnerOptions options)
-    : store_(store), devices_(devices), cell_(cell), options_(options) {
+    : store_(store), devices_(devices), cell_(cell), options_(options),
+      heaters_(options.heaters, Clock::now()) {
     thread_ = std::thread([this] { run(); });
 }
 
@@ -160,6 +160,11 @@ json PrintRunner::print_status() const {
     return {{"job", active_->id}, {"progress", progress_json()}, {"sync", sync}};
 }
 
+json PrintRunner::heater_status() const {
+    std::lock_guard lock(mu_);
+    return heaters_.status(Clock::now());
+}
+
 json PrintRunner::progress_json() const {
     const Active& a = *active_;
     const auto total = static_cast<std::int64_t>(a.plan.program.events.size());
@@ -217,6 +222,7 @@ void PrintRunner::run() {
             // on its own faults, and the job's state says what happened (JobStore::apply).
             spdlog::critical("print.poll_failed: {}", e.what());
         }
+        tend_heaters();
         lock.lock();
     }
     // Leaving: the print is paused, not aborted, so that the job comes back interrupted.
@@ -233,6 +239,10 @@ void PrintRunner::run() {
         }
         devices_.set_print(nullptr);
     }
+    // Nobody is left to watch them; the resume after the restart heats them again.
+    // Waited for (briefly): the process may end before the lines are written.
+    if (auto off = send_heaters_off("the service is stopping"); off.valid())
+        off.wait_for(std::chrono::seconds(2));
 }
 
 void PrintRunner::handle(Command& c) {
@@ -252,7 +262,10 @@ void PrintRunner::handle(Command& c) {
                     while (devices_.robot_io().snapshot().running && Clock::now() < deadline)
                         std::this_thread::sleep_for(std::chrono::milliseconds(10));
                 }
-                active_->paused_since = Clock::now();
+                {
+                    std::lock_guard heaters_lock(mu_);
+                    heaters_.paused(c.id, Clock::now());
+                }
                 store_.apply(c.id, JobAction::pause_done);
                 break;
             case Command::Kind::resume:
@@ -280,7 +293,10 @@ void PrintRunner::handle(Command& c) {
                         active_->reselect_tool = false;
                     }
                     active_->session->resume();
-                    active_->paused_since.reset();
+                    {
+                        std::lock_guard heaters_lock(mu_);
+                        heaters_.printing(c.id);
+                    }
                     active_->fault_reported = false;
                 } catch (const std::exception& e) {
                     store_.apply(c.id, JobAction::faulted, e.what());
@@ -290,7 +306,7 @@ void PrintRunner::handle(Command& c) {
             case Command::Kind::abort:
                 if (mine) {
                     active_->session->abort();
-                    finish("aborted by the operator");
+                    finish("aborted by the operator", "aborted by the operator");
                 }
                 break;
         }
@@ -375,7 +391,7 @@ void PrintRunner::start_job(std::int64_t id) {
             active_ = std::move(a);
         }
         store_.apply(id, JobAction::print_started);
-        finish("");
+        finish("completed (nothing was left to print)");
         store_.apply(id, JobAction::print_done);
         return;
     }
@@ -433,6 +449,7 @@ void PrintRunner::start_job(std::int64_t id) {
     {
         std::lock_guard lock(mu_);
         active_ = std::move(a);
+        heaters_.printing(id);
     }
     store_.apply(id, JobAction::print_started);
 }
@@ -469,7 +486,7 @@ void PrintRunner::poll_active() {
         case print::PrintPhase::completed: {
             const std::int64_t id = a.id;
             const auto shortfalls = st.sync.stats.shortfalls;
-            finish("");  // result.json first: a client that sees `completed` finds the result
+            finish("completed");  // result.json first: a client that sees `completed` finds it
             if (shortfalls.empty())
                 store_.apply(id, JobAction::print_done);
             else
@@ -481,15 +498,63 @@ void PrintRunner::poll_active() {
             break;
         default: break;
     }
-    // A long pause: the heaters go off (the resume heats them first).
-    if (a.paused_since && !a.heaters_off && Clock::now() - *a.paused_since > options_.heater_timeout) {
-        spdlog::warn("print.heaters_off job {} paused for {} s", a.id,
-                     std::chrono::duration_cast<std::chrono::seconds>(options_.heater_timeout).count());
-        const auto& x = devices_.extruder().config();
-        devices_.board().submit({"M104 T" + std::to_string(x.pla_tool) + " S0",
-                                 "M104 T" + std::to_string(x.ccf_tool) + " S0"});
-        a.heaters_off = true;
+}
+
+// The heater policy's timers, every poll: the M104 S0s when it says so. A paused job's heaters
+// are heated again by its resume.
+void PrintRunner::tend_heaters() {
+    const HotendTemps t = devices_.temperatures();
+    const bool heating = t.pla_target_c.value_or(0) > 0 || t.ccf_target_c.value_or(0) > 0;
+    std::optional<std::string> reason;
+    {
+        std::lock_guard lock(mu_);
+        heaters_.observe(heating, Clock::now());
+        reason = heaters_.due(Clock::now());
     }
+    if (!reason) return;
+    reconnect_idle_board();
+    if (!send_heaters_off(*reason).valid()) return;
+    std::lock_guard lock(mu_);
+    heaters_.switched_off(*reason, Clock::now());
+    if (active_) active_->heaters_off = true;
+}
+
+// With no job on the cell, a board whose link fell out (a cable pulled and put back, a fault) is
+// opened again for its heaters, every 10 s at most. A job's own board is the resume's to open.
+void PrintRunner::reconnect_idle_board() {
+    {
+        std::lock_guard lock(mu_);
+        if (active_) return;
+    }
+    if (devices_.board().state() == drivers::DeviceState::active) return;
+    const auto now = Clock::now();
+    if (last_idle_reconnect_ && now - *last_idle_reconnect_ < std::chrono::seconds(10)) return;
+    last_idle_reconnect_ = now;
+    try {
+        devices_.connect(options_.connect_timeout);
+        spdlog::info("print.board_reconnected for its heaters");
+    } catch (const std::exception& e) {
+        spdlog::warn("print.board_reconnect for its heaters failed: {}", e.what());
+    }
+}
+
+// Both hotends to 0; no future (not valid()) when the board is not connected: its firmware's own
+// thermal protection is then what remains (logged once until the board takes them).
+std::future<drivers::marlin::CommandOutcome> PrintRunner::send_heaters_off(const std::string& reason) {
+    if (devices_.board().state() != drivers::DeviceState::active) {
+        if (!heaters_unreachable_logged_)
+            spdlog::error("print.heaters_unreachable the heaters should go off ({}) but the "
+                          "extruder board is {}; tried again until it answers",
+                          reason, drivers::to_string(devices_.board().state()));
+        heaters_unreachable_logged_ = true;
+        return {};
+    }
+    const auto& x = devices_.extruder().config();
+    auto sent = devices_.board().submit({"M104 T" + std::to_string(x.pla_tool) + " S0",
+                                         "M104 T" + std::to_string(x.ccf_tool) + " S0"});
+    heaters_unreachable_logged_ = false;
+    spdlog::warn("print.heaters_off {}", reason);
+    return sent;
 }
 
 // The journal follows a fibre path's feed, so that a re-entry after a crash lays only the rest
@@ -515,17 +580,22 @@ void PrintRunner::hold_on_fault(Active& a, const std::string& reason) {
         // Not printing: already held by a fault of its own.
     }
     a.fault_reported = true;
-    a.paused_since = Clock::now();
+    {
+        std::lock_guard lock(mu_);
+        heaters_.paused(a.id, Clock::now());
+    }
     spdlog::error("print.fault job {}: {}", a.id, reason);
     store_.apply(a.id, JobAction::faulted, reason);
 }
 
-// The print ended (completed or aborted): its figures go to result.json beside state.json.
-void PrintRunner::finish(const std::string& outcome_reason) {
+// The print ended (completed or aborted): its figures go to result.json beside state.json, and
+// the heaters go off (now, or after the cell's hold).
+void PrintRunner::finish(const std::string& outcome, const std::string& outcome_reason) {
     std::unique_ptr<Active> a;
     {
         std::lock_guard lock(mu_);
         a = std::move(active_);
+        if (a) heaters_.ended(a->id, outcome, Clock::now());
     }
     if (!a) return;
     devices_.set_print(nullptr);

@@ -12,7 +12,8 @@
 //   while printing: the engine's confirmed events are journaled (fsync) as they come, progress is
 //               reported, a device fault makes the job paused with the reason (the cell is safe:
 //               robot held, feed stopped, heaters on) until the operator resumes or aborts.
-//   the heaters of a paused job are switched off after `heater_timeout` (the resume re-heats).
+//   heaters: HeaterPolicy says when they go off (a print's end, a long pause, an idle cell);
+//               the runner sends the M104 S0s, and at a service stop too.
 //
 // Commands come from the API's threads and return at once; their outcome is reported through the
 // callback (the job's transition, or the reason it could not be done).
@@ -22,6 +23,7 @@
 #include "daemon/print/print_plan.hpp"
 #include "daemon/print/print_session.hpp"
 #include "daemon/service/cell_devices.hpp"
+#include "daemon/service/heater_policy.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -30,6 +32,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -41,7 +44,7 @@ namespace fibrecell::daemon::service {
 struct PrintRunnerOptions {
     std::chrono::milliseconds connect_timeout{10000};  // devices up at a start
     std::chrono::milliseconds heartbeat_timeout{1000}; // real time: FcMain holds the robot after it
-    std::chrono::milliseconds heater_timeout{std::chrono::minutes(30)};  // paused: heaters off
+    HeaterPolicyOptions heaters;
     std::chrono::milliseconds poll_period{100};
     int realtime_priority = 20;  // SCHED_FIFO of the sync, serial and Modbus threads; 0: off
     double late_cut_mm = 2.0;    // a cut this far past its place is a shortfall
@@ -74,6 +77,7 @@ class PrintRunner {
     // The job on the cell and its print progress; nullopt when none.
     std::optional<std::int64_t> current_job() const;
     nlohmann::json print_status() const;  // {"job", "progress", "sync"} or {}
+    nlohmann::json heater_status() const;  // HeaterPolicy::status
 
     // Service stopping: a running print is paused (robot stopped, feed stopped) so that the job
     // comes back interrupted and resumable; joins the thread.
@@ -96,7 +100,12 @@ class PrintRunner {
     void hold_on_fault(Active& a, const std::string& reason);
     void save_fibre_fed(Active& a, const sync::MeteringStatus& m);
     void poll_active();
-    void finish(const std::string& outcome_reason);
+    // `outcome`: how the print ended, for the heaters' log ("completed", "aborted by the
+    // operator"); `reason`: result.json's reason (empty: none).
+    void finish(const std::string& outcome, const std::string& reason = "");
+    void tend_heaters();
+    void reconnect_idle_board();
+    std::future<drivers::marlin::CommandOutcome> send_heaters_off(const std::string& reason);
     nlohmann::json progress_json() const;  // lock held
 
     jobs::JobStore& store_;
@@ -109,6 +118,9 @@ class PrintRunner {
     std::condition_variable cv_;
     std::deque<Command> commands_;
     std::unique_ptr<Active> active_;
+    HeaterPolicy heaters_;
+    bool heaters_unreachable_logged_ = false;  // the runner's thread only
+    std::optional<std::chrono::steady_clock::time_point> last_idle_reconnect_;  // the same
     bool stopping_ = false;
     std::thread thread_;  // last
 };

@@ -771,6 +771,10 @@ double MockGt2560::temperature_c(int heater) const {
     std::lock_guard lock(impl_->mu);
     return impl_->heaters.at(static_cast<std::size_t>(heater)).temp_c;
 }
+double MockGt2560::target_c(int heater) const {
+    std::lock_guard lock(impl_->mu);
+    return impl_->heaters.at(static_cast<std::size_t>(heater)).target_c;
+}
 bool MockGt2560::killed() const {
     std::lock_guard lock(impl_->mu);
     return impl_->killed;

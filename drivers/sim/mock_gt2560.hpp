@@ -99,6 +99,7 @@ class MockGt2560 {
     std::vector<ExecutedCommand> executed_since(std::size_t first) const;
     std::vector<PinEvent> pin_events() const;
     double temperature_c(int heater) const;
+    double target_c(int heater) const;  // 0: the heater is off
     bool killed() const;
     std::uint64_t rx_bytes_dropped() const;
     std::uint64_t cold_extrusion_refusals() const;  // E moves refused below min_extrude_temp_c

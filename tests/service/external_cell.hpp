@@ -12,14 +12,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <string>
 
 namespace fibrecell::test {
 
 class ExternalCell {
   public:
-    // With `board_control`, board_command() injects the mock board's faults (its stdin).
-    ExternalCell(const fs::path& dir, double time_scale, bool board_control = false)
+    // With `board_control`, board_command() injects the mock board's faults (its stdin);
+    // `board_options` are more of mock-gt2560's options.
+    ExternalCell(const fs::path& dir, double time_scale, bool board_control = false,
+                 const std::vector<std::string>& board_options = {})
         : board_log_(dir / "board.log"), trajectory_(dir / "trajectory.csv"), tty_(dir / "ttyGT2560") {
         const std::string bin = fibrecell::test::binary_path();
         const std::string scale = std::to_string(time_scale);
@@ -27,6 +32,7 @@ class ExternalCell {
                                             "--bootloader-s", "0.2", "--hotend-tau-s", "2",
                                             "--residency-s", "0.5", "--log", board_log_.string(),
                                             "--emergency-parser"};  // as the cell's firmware
+        board_args.insert(board_args.end(), board_options.begin(), board_options.end());
         if (!board_control) board_args.insert(board_args.begin(), "--daemon");
         board_ = std::make_unique<ChildProcess>(bin + "/tools/mock-gt2560", board_args,
                                                 dir / "mock.log", board_control);
@@ -89,6 +95,22 @@ class ExternalCell {
         const std::size_t before = count();
         return board_->send_line(command) && eventually([&] { return count() > before; }, 10s);
     }
+
+    // The mock board's own heater targets [C] (its `heaters` command), T0 and T1; nullopt when
+    // it did not answer.
+    std::optional<std::pair<double, double>> board_heater_targets() {
+        if (!board_command("heaters")) return std::nullopt;
+        const std::string log = board_->log();
+        const auto at = log.rfind("heaters T0 ");
+        std::pair<double, double> t;
+        if (at == std::string::npos ||
+            std::sscanf(log.c_str() + at, "heaters T0 %lf T1 %lf", &t.first, &t.second) != 2)
+            return std::nullopt;
+        return t;
+    }
+
+    // The simulated IRC5 gone (its process killed): the robot's links fall.
+    void kill_robot() { robot_->kill_now(); }
 
     const fs::path& board_log() const { return board_log_; }
     const fs::path& trajectory() const { return trajectory_; }

@@ -2,6 +2,7 @@
 // for manual testing (`picocom`, the daemon). Faults come from stdin, one command per line:
 //   corrupt K | drop K | duplicate K | swallow-ok K | delay-ok K SECONDS | garble-resend |
 //   reset-at K | reset | silent on|off | unplug | replug | runaway HEATER | action TEXT | quit
+// and `heaters`, answered "heaters T0 <target C> T1 <target C>" (the board's own state).
 // With --daemon it ignores stdin and runs until SIGTERM/SIGINT; --log appends every executed
 // command ("<simulated s>\t<command>") to a file, flushed as it goes, so that a test can read the
 // board's log after killing the service that drove it.
@@ -51,6 +52,8 @@ int main(int argc, char** argv) {
     app.add_flag("!--no-resend-ok", o.resend_ok, "no ok after Resend (older Marlin)");
     app.add_flag("--emergency-parser", o.emergency_parser,
                  "M108/M112/M410 act as they arrive (a build with EMERGENCY_PARSER; stock 1.1.9: only when read)");
+    app.add_flag("!--no-reset-on-open", o.reset_on_open,
+                 "opening the port does not reboot the board (auto-reset disabled, or no DTR)");
     app.add_flag("--advanced-ok", o.advanced_ok, "ok N<line> P<planner> B<buffer>");
     app.add_option("--hotend-tau-s", o.hotend_tau_s, "hotend time constant (simulated s)");
     app.add_option("--residency-s", o.residency_s, "M109 residency (simulated s)");
@@ -93,7 +96,9 @@ int main(int argc, char** argv) {
         else if (cmd == "replug") mock.replug();
         else if (cmd == "runaway" && in >> k) mock.thermal_runaway(static_cast<int>(k));
         else if (cmd == "action") { std::string rest; std::getline(in >> std::ws, rest); mock.send_action(rest); }
-        else if (cmd == "quit") break;
+        else if (cmd == "heaters") {  // the board's own targets, for tests that check them
+            std::cout << "heaters T0 " << mock.target_c(0) << " T1 " << mock.target_c(1) << std::endl;
+        } else if (cmd == "quit") break;
         else if (!cmd.empty()) { std::cerr << "mock-gt2560: unknown or incomplete control command '" << line << "'\n"; continue; }
         std::cout << "done " << cmd << std::endl;
     }

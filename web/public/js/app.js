@@ -33,6 +33,10 @@ function glance(status) {
   const t = (v, target) => (v === undefined ? "–" : `${v.toFixed(0)}°` + (target ? ` / ${target.toFixed(0)}°` : ""));
   document.getElementById("glance-pla").textContent = `PLA ${t(b.pla_c, b.pla_target_c)}`;
   document.getElementById("glance-ccf").textContent = `CCF ${t(b.ccf_c, b.ccf_target_c)}`;
+  // Why the hotends are on (cell.status heaters: docs/service.md, "Heaters").
+  const h = status.heaters || {};
+  const off = h.off_in_s === null || h.off_in_s === undefined ? "" : `, off in ${formatDuration(h.off_in_s)}`;
+  document.getElementById("glance-heaters").textContent = h.on ? `heaters on: ${h.why}${off}` : "heaters off";
 }
 
 async function onConnected() {
