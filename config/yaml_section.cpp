@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace fibrecell::config {
@@ -37,6 +38,39 @@ struct ListOf<std::vector<E>> {
     using element = E;
 };
 
+// No configuration or job comes near this many values; a document that does is aliases
+// expanding (a "billion laughs"), refused before anything walks it.
+constexpr std::size_t kMaxValues = 100'000;
+
+// YAML allows a key once per mapping; yaml-cpp keeps every pair and its lookups find the first,
+// so a repeated key would silently lose the value written last. Refused, with both lines.
+void refuse_duplicate_keys(const YAML::Node& node, const std::string& path, const std::string& origin,
+                           std::size_t& values) {
+    if (++values > kMaxValues)
+        throw ConfigError(origin + ": more than " + std::to_string(kMaxValues) +
+                          " values (aliases that expand?)");
+    if (node.IsSequence()) {
+        for (std::size_t i = 0; i < node.size(); ++i)
+            refuse_duplicate_keys(node[i], path + "[" + std::to_string(i) + "]", origin, values);
+        return;
+    }
+    if (!node.IsMap()) return;
+    std::map<std::string, int> first_line;
+    for (const auto& kv : node) {
+        const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
+        const std::string key_path = path.empty() ? key : path + "." + key;
+        const int line = kv.first.Mark().line + 1;
+        if (kv.first.IsScalar()) {
+            const auto [it, fresh] = first_line.emplace(key, line);
+            if (!fresh)
+                throw ConfigError(origin + ": line " + std::to_string(line) + ": " + key_path +
+                                  ": the key appears twice in one mapping (first at line " +
+                                  std::to_string(it->second) + ")");
+        }
+        refuse_duplicate_keys(kv.second, key_path, origin, values);
+    }
+}
+
 }  // namespace
 
 Section Section::load_file(const std::string& path) {
@@ -57,6 +91,8 @@ Section Section::load_text(const std::string& text, const std::string& origin) {
     }
     if (root && !root.IsNull() && !root.IsMap())
         throw ConfigError(origin + ": the document must be a mapping of keys to values");
+    std::size_t values = 0;
+    refuse_duplicate_keys(root, "", origin, values);
     return Section(root, "", std::make_shared<const std::string>(origin));
 }
 

@@ -8,7 +8,8 @@ cmake_policy(PUSH)
 cmake_policy(SET CMP0064 NEW)  # if(TEST ...)
 set(fibrecell_slow_tests
     "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=60"
-    "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=43"
+    "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=30"
+    "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=22"
     "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=25"
     "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=18"
     "ExampleGuarantees.Loop=18"

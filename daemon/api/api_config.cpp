@@ -83,6 +83,8 @@ void load_tcp(config::Section s, ApiTcpConfig& tcp) {
     tcp.port = static_cast<std::uint16_t>(s.integer("port", tcp.port, 1, 65535));
     tcp.auth_timeout = std::chrono::milliseconds(
         s.integer("auth_timeout_ms", static_cast<int>(tcp.auth_timeout.count()), 100, 600000));
+    tcp.max_unauthenticated = s.integer("max_unauthenticated", tcp.max_unauthenticated, 1, 10000);
+    tcp.auth_attempts_per_s = s.integer("auth_attempts_per_s", tcp.auth_attempts_per_s, 1, 10000);
 
     tcp.token = read_token(s);
     if (tcp.enabled && tcp.token.empty())

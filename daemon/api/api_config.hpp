@@ -25,6 +25,13 @@ struct ApiTcpConfig {
     std::uint16_t port = 7420;       // 0 (tests only): an ephemeral port, see ApiServer::tcp_port()
     std::string token;               // from `token` or the first line of `token_file`
     std::chrono::milliseconds auth_timeout{10000};  // a connection must call server.auth by then
+    // Connections still to call server.auth, at most: beyond it the oldest of them is closed
+    // (connections that never authenticate cannot fill the server).
+    int max_unauthenticated = 8;
+    // Tokens checked per second, all connections together: beyond it server.auth is answered
+    // "try again" without a check, so that guessing the token is bounded whatever the number of
+    // connections (a burst of as many is allowed).
+    int auth_attempts_per_s = 10;
 };
 
 // The dashboard's HTTP listener (daemon/http, docs/dashboard.md): the pages, a login with a

@@ -14,6 +14,9 @@
 
 #include <sys/socket.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace fibrecell::api {
 
 namespace asio = boost::asio;
@@ -29,6 +32,50 @@ std::string unix_peer(int fd) {
     return "unix uid=" + std::to_string(cred.uid) + " pid=" + std::to_string(cred.pid);
 }
 
+// The connections not on their way out.
+std::vector<std::shared_ptr<ClientSession>> open_sessions(const ServerCore& core) {
+    std::vector<std::shared_ptr<ClientSession>> live;
+    for (const auto& [id, weak] : core.sessions)
+        if (auto s = weak.lock(); s && !s->closing()) live.push_back(std::move(s));
+    return live;
+}
+
+// Whom to close to make room: a connection that has not authenticated first, then the one idle
+// longest; never one with a call in progress, nor the newcomer. Null when there is none.
+std::shared_ptr<ClientSession> longest_idle(const std::vector<std::shared_ptr<ClientSession>>& live,
+                                            std::uint64_t newcomer, bool unauthenticated_only) {
+    std::shared_ptr<ClientSession> pick;
+    const auto before = [](const ClientSession& a, const ClientSession& b) {
+        if (a.unauthenticated_tcp() != b.unauthenticated_tcp()) return a.unauthenticated_tcp();
+        return a.last_active() < b.last_active();
+    };
+    for (const auto& s : live) {
+        if (s->id() == newcomer || s->busy()) continue;
+        if (unauthenticated_only && !s->unauthenticated_tcp()) continue;
+        if (!pick || before(*s, *pick)) pick = s;
+    }
+    return pick;
+}
+
+// Logged once a second at most: a flood of connections must not become a flood of log lines.
+void make_room(ServerCore& core, const std::shared_ptr<ClientSession>& victim, const char* reason,
+               const std::string& message) {
+    core.counters.evicted++;
+    ++core.evicted_unlogged;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - core.evicted_logged_at >= std::chrono::seconds(1)) {
+        spdlog::warn("api.client_closed_for_room client={} peer={} reason={} ({} closed so since "
+                     "the last such line)",
+                     victim->id(), victim->peer(), reason, core.evicted_unlogged);
+        core.evicted_logged_at = now;
+        core.evicted_unlogged = 0;
+    }
+    victim->refuse(error_response(nullptr, errc::unavailable, message));
+}
+
+// A new connection is always let in while anyone else can make room for it: a client allowed on
+// the socket (its file permissions, the token on TCP) gets its control call answered whatever the
+// other connections do (docs/socket-api.md, "Connections").
 void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket,
            Transport transport, std::string peer) {
     const std::uint64_t id = core->next_client++;
@@ -37,26 +84,50 @@ void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket
     auto session =
         std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer));
     core->sessions[id] = session;
+    auto live = open_sessions(*core);
+    if (session->unauthenticated_tcp()) {
+        const auto limit = static_cast<std::size_t>(core->config.tcp.max_unauthenticated);
+        const auto waiting = std::count_if(live.begin(), live.end(),
+                                           [](const auto& s) { return s->unauthenticated_tcp(); });
+        if (static_cast<std::size_t>(waiting) > limit) {
+            if (auto oldest = longest_idle(live, id, true)) {
+                make_room(*core, oldest, "max_unauthenticated",
+                          "unavailable: closed for a newer connection: at most " +
+                              std::to_string(limit) +
+                              " connections may wait for server.auth (api.tcp.max_unauthenticated)");
+                live = open_sessions(*core);
+            }
+        }
+    }
     const auto max = static_cast<std::size_t>(core->config.max_clients);
     const auto reserved = static_cast<std::size_t>(core->config.reserved_control_clients);
-    if (core->sessions.size() > max + reserved) {
-        core->counters.refused_full++;
-        spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}+{}", id,
-                     session->peer(), max, reserved);
-        session->refuse(error_response(nullptr, errc::unavailable,
-                                       "unavailable: fibrecelld serves at most " +
-                                           std::to_string(max) +
-                                           " clients at once (api.max_clients)"));
-        return;
+    if (live.size() > max + reserved) {
+        auto victim = longest_idle(live, id, false);
+        if (!victim) {  // every other connection has a call in progress
+            core->counters.refused_full++;
+            spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}+{}", id,
+                         session->peer(), max, reserved);
+            session->refuse(error_response(nullptr, errc::unavailable,
+                                           "unavailable: fibrecelld serves at most " +
+                                               std::to_string(max) +
+                                               " clients at once (api.max_clients), all busy"));
+            return;
+        }
+        make_room(*core, victim, "max_clients",
+                  "unavailable: closed for a newer connection: fibrecelld serves at most " +
+                      std::to_string(max + reserved) +
+                      " clients at once (api.max_clients + api.reserved_control_clients); the one "
+                      "idle longest goes first");
+        live = open_sessions(*core);
     }
-    if (core->sessions.size() > max) {
+    if (live.size() > max) {
         core->counters.control_only++;
         session->restrict_to_control();
-        spdlog::warn("api.client_control_only client={} peer={}: {} clients connected, this one "
+        spdlog::debug("api.client_control_only client={} peer={}: {} clients connected, this one "
                      "may only call the control methods",
                      id, session->peer(), max);
     }
-    spdlog::info("api.client_connected client={} peer={}", id, session->peer());
+    spdlog::debug("api.client_connected client={} peer={}", id, session->peer());  // a flood is not logged
     session->start();
 }
 
@@ -299,6 +370,7 @@ ApiServerStats ApiServer::stats() const {
     s.notifications_coalesced = c.notifications_coalesced.load();
     s.dropped_slow = c.dropped_slow.load();
     s.refused_full = c.refused_full.load();
+    s.evicted = c.evicted.load();
     s.control_only = c.control_only.load();
     s.closed_idle = c.closed_idle.load();
     s.oversized = c.oversized.load();

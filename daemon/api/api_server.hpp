@@ -43,7 +43,8 @@ struct ApiServerStats {
     std::uint64_t notifications_sent = 0;       // notification lines queued to clients
     std::uint64_t notifications_coalesced = 0;  // latest-only events replaced before sending
     std::uint64_t dropped_slow = 0;             // clients disconnected for an overfull queue
-    std::uint64_t refused_full = 0;             // connections refused (max + reserved full)
+    std::uint64_t refused_full = 0;             // connections refused (max + reserved full, all busy)
+    std::uint64_t evicted = 0;                  // closed to make room for a newer connection
     std::uint64_t control_only = 0;             // admitted into the reserved control capacity
     std::uint64_t closed_idle = 0;              // closed after api.idle_timeout_s
     std::uint64_t oversized = 0;                // request lines above api.max_request_bytes

@@ -43,11 +43,13 @@ void ClientSession::handle_line(std::string_view line) {
         reply->batch = true;
         reply->slots.resize(message.size());
         reply->remaining = message.size();
+        ++in_flight_;
         // Every entry is answered, even after a wrong token closed the connection mid-batch.
         for (std::size_t i = 0; i < message.size(); ++i) dispatch(std::move(message[i]), reply, i);
     } else {
         reply->slots.resize(1);
         reply->remaining = 1;
+        ++in_flight_;
         dispatch(std::move(message), reply, 0);
     }
 }
@@ -57,6 +59,7 @@ void ClientSession::complete(const std::shared_ptr<PendingReply>& reply, std::si
     reply->slots[slot] = std::move(response);
     if (--reply->remaining != 0) return;
     const auto session = reply->session.lock();
+    if (session) --session->in_flight_;
     if (!session || session->closed_) return;  // the client left before its answer was ready
     if (!reply->batch) {
         if (reply->slots[0]) session->send(*reply->slots[0]);
@@ -158,6 +161,16 @@ void ClientSession::authenticate(const RpcRequest& request, const Responder& res
     if (auth_failed_) {
         responder.error(errc::unauthorized,
                         "unauthorized: this connection already gave a wrong token; reconnect");
+        return;
+    }
+    if (transport_ == Transport::tcp && !authenticated_ && !core_->take_auth_attempt()) {
+        core_->counters.auth_failures++;
+        responder.error(errc::unavailable,
+                        "unavailable: more than " +
+                            std::to_string(core_->config.tcp.auth_attempts_per_s) +
+                            " server.auth attempts a second (api.tcp.auth_attempts_per_s); try "
+                            "again shortly");
+        close_after_flush();
         return;
     }
     if (transport_ == Transport::tcp && !same_token(token, core_->config.tcp.token)) {

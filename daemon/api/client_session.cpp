@@ -137,6 +137,7 @@ void ClientSession::process_lines() {
             reject_oversized();
             return;
         }
+        last_active_ = std::chrono::steady_clock::now();
         handle_line(line);
         arm_idle_timer();  // cancels the pending wait
         start = nl + 1;

@@ -48,6 +48,11 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
 
     std::uint64_t id() const { return id_; }
     const std::string& peer() const { return peer_; }
+    // For the server's choice of whom to close when it is full (api_server.cpp).
+    bool closing() const { return closing_; }
+    bool unauthenticated_tcp() const { return transport_ == Transport::tcp && !authenticated_; }
+    bool busy() const { return in_flight_ > 0; }  // a call of it not answered yet
+    std::chrono::steady_clock::time_point last_active() const { return last_active_; }
 
   private:
     // The answers to one incoming line: one slot, or one per batch entry.
@@ -108,6 +113,8 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     bool auth_failed_ = false;  // one try per connection, batched or not
     bool control_only_ = false;
     bool closing_ = false;  // no more requests: flush, half-close, drain the input, close
+    std::size_t in_flight_ = 0;  // request lines not answered yet
+    std::chrono::steady_clock::time_point last_active_ = std::chrono::steady_clock::now();  // connect, request
     bool closed_ = false;
     std::set<std::string, std::less<>> topics_;
     LatestOnlyGate gate_;

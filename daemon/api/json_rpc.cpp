@@ -3,6 +3,11 @@
 #include "daemon/api/api_error.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace fibrecell::api {
 
@@ -23,6 +28,68 @@ std::string json_error_text(const nlohmann::json::exception& e) {
     if (what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
         what = what.substr(close + 2);
     return what;
+}
+
+// The first key that appears twice in one object, as a path ("params.job"; "[2].params.job" in a
+// batch). JSON leaves duplicates to the reader and nlohmann keeps the last: a request that says
+// {"job": 1, "job": null} must not be read as either.
+class DuplicateKeyScan {
+  public:
+    bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using E = nlohmann::json::parse_event_t;
+        switch (event) {
+            case E::object_start: levels_.push_back({true}); break;
+            case E::array_start: levels_.push_back({false}); break;
+            case E::object_end:
+            case E::array_end:
+                levels_.pop_back();
+                if (!levels_.empty() && !levels_.back().object) ++levels_.back().index;
+                break;
+            case E::key: {
+                Level& l = levels_.back();
+                l.key = parsed.get<std::string>();
+                if (!l.keys.insert(l.key).second && !first_) first_ = path();
+                break;
+            }
+            case E::value:
+                if (!levels_.empty() && !levels_.back().object) ++levels_.back().index;
+                break;
+        }
+        return true;
+    }
+    const std::optional<std::string>& first() const { return first_; }
+
+  private:
+    struct Level {
+        bool object;
+        std::set<std::string> keys{};
+        std::string key{};
+        std::size_t index = 0;
+    };
+    std::string path() const {
+        std::string p;
+        for (const Level& l : levels_)
+            p += l.object ? (p.empty() ? "" : ".") + l.key : "[" + std::to_string(l.index) + "]";
+        return p;
+    }
+    std::vector<Level> levels_;
+    std::optional<std::string> first_;
+};
+
+// The refusal of a message with a duplicate key: invalid params when the key is a call's
+// parameter (with the call's id and method when they can be read), else an invalid request.
+nlohmann::json duplicate_key_error(const nlohmann::json& message, const std::string& path) {
+    const auto params_at = path.find("params.");
+    const bool single = message.is_object();
+    if (!single || params_at != 0) {
+        return error_response(nullptr, errc::invalid_request,
+                              "invalid request: " + path + " appears twice in one object");
+    }
+    const auto id = message.find("id");
+    const auto method = message.find("method");
+    const std::string name = method != message.end() && method->is_string() ? method->get<std::string>() + ": " : "";
+    return error_response(id != message.end() && valid_id(*id) ? *id : nlohmann::json(),
+                          errc::invalid_params, name + path + " appears twice; give it once");
 }
 
 }  // namespace
@@ -90,7 +157,10 @@ ParsedLine parse_line(std::string_view line) {
                                         "invalid request: JSON nested deeper than " +
                                             std::to_string(kMaxNestingDepth) + " levels")};
     try {
-        return {nlohmann::json::parse(line), nullptr};
+        DuplicateKeyScan scan;
+        nlohmann::json message = nlohmann::json::parse(line, std::ref(scan));
+        if (scan.first()) return {nullptr, duplicate_key_error(message, *scan.first())};
+        return {std::move(message), nullptr};
     } catch (const nlohmann::json::exception& e) {
         // parse_error for the syntax; out_of_range (406) for a number beyond double, which the
         // grammar allows but no value here can hold.

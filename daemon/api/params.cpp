@@ -22,10 +22,7 @@ ParamReader::ParamReader(std::string method, const nlohmann::json& params)
         throw ApiError::invalid_params(method_ + ": params must be an object with named members");
 }
 
-bool ParamReader::has(std::string_view key) const {
-    const auto it = params_.find(key);
-    return it != params_.end() && !it->is_null();
-}
+bool ParamReader::has(std::string_view key) const { return params_.find(key) != params_.end(); }
 
 void ParamReader::fail(std::string_view key, const std::string& problem) const {
     throw ApiError::invalid_params(method_ + ": params." + std::string(key) + " " + problem);
@@ -37,7 +34,10 @@ const nlohmann::json* ParamReader::member(std::string_view key, bool required, c
         if (required) fail(key, std::string("is required (") + kind + ")");
         return nullptr;
     }
-    return &*params_.find(key);
+    // null is a value of the wrong type, never "the default": leave the member out for that.
+    const nlohmann::json& v = *params_.find(key);
+    if (v.is_null()) fail(key, std::string("is null; give ") + kind + (required ? "" : " or leave it out"));
+    return &v;
 }
 
 std::string ParamReader::string(std::string_view key) {

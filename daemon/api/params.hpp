@@ -23,7 +23,7 @@ class ParamReader {
     // params: the call's params (an object; an absent params arrives as {}).
     ParamReader(std::string method, const nlohmann::json& params);
 
-    bool has(std::string_view key) const;
+    bool has(std::string_view key) const;  // present, null too (which every reader refuses)
     std::string string(std::string_view key);
     std::optional<std::string> string_opt(std::string_view key);
     bool boolean_or(std::string_view key, bool fallback);

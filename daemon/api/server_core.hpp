@@ -13,7 +13,9 @@
 #include <boost/asio/local/stream_protocol.hpp>
 #include <boost/asio/strand.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -33,6 +35,7 @@ struct ServerCounters {
     std::atomic<std::uint64_t> notifications_coalesced{0};
     std::atomic<std::uint64_t> dropped_slow{0};
     std::atomic<std::uint64_t> refused_full{0};
+    std::atomic<std::uint64_t> evicted{0};  // closed to make room for a newer connection
     std::atomic<std::uint64_t> control_only{0};
     std::atomic<std::uint64_t> closed_idle{0};
     std::atomic<std::uint64_t> oversized{0};
@@ -51,6 +54,24 @@ struct ServerCore {
     std::uint64_t next_client = 1;
     bool stopped = false;
     ServerCounters counters;
+    std::chrono::steady_clock::time_point evicted_logged_at{};  // api.client_closed_for_room
+    // Token checks left in this second (api.tcp.auth_attempts_per_s), refilled continuously.
+    double auth_attempts_left = -1;  // < 0: full, not started
+    std::chrono::steady_clock::time_point auth_attempts_at{};
+
+    // Takes one token check from the budget; false when it is spent.
+    bool take_auth_attempt() {
+        const double rate = config.tcp.auth_attempts_per_s;
+        const auto now = std::chrono::steady_clock::now();
+        if (auth_attempts_left < 0) auth_attempts_left = rate;
+        auth_attempts_left = std::min(
+            rate, auth_attempts_left + rate * std::chrono::duration<double>(now - auth_attempts_at).count());
+        auth_attempts_at = now;
+        if (auth_attempts_left < 1) return false;
+        auth_attempts_left -= 1;
+        return true;
+    }
+    std::uint64_t evicted_unlogged = 0;
 
     // Listeners; set up by ApiServer::start() before any connection exists.
     std::unique_ptr<boost::asio::local::stream_protocol::acceptor> unix_acceptor;

@@ -18,6 +18,7 @@ CellConfig load_cell_config(const std::string& path,
     c.rws = drivers::abb::rws::load_rws_config(root.section("rws"));
     c.robot_io = drivers::abb::load_robot_io_config(root.section("robot_io"));
     c.simulation = load_simulation_config(root.section("simulation"));
+    c.part_limits = load_part_limits(root.section("part_limits"));
     if (service) {
         service(root);
     } else {

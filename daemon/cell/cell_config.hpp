@@ -6,6 +6,7 @@
 #include "drivers/abb/modbus/robot_io_config.hpp"
 #include "drivers/abb/rws/rws_config.hpp"
 #include "drivers/extruder/extruder_config.hpp"
+#include "daemon/cell/part_limits.hpp"
 #include "daemon/cell/simulation_config.hpp"
 
 #include "config/yaml_section.hpp"
@@ -25,6 +26,7 @@ struct CellConfig {
     drivers::abb::rws::RwsLinkConfig rws;           // the IRC5's Robot Web Services (rws-link.md)
     drivers::abb::RobotIoConfig robot_io;           // Modbus TCP robot I/O coupler (robot-io.md)
     SimulationConfig simulation;                    // the simulated cell (simulated: true)
+    PartLimits part_limits;                         // the largest part it takes (service.md)
 };
 
 // The sections only the service reads (api:, jobs:, print:); other readers of a cell YAML

@@ -24,7 +24,7 @@ namespace {
 
 constexpr auto kRequestTimeout = std::chrono::seconds(30);
 constexpr std::size_t kMaxHeaderBytes = 16 * 1024;
-constexpr std::size_t kWebSocketSlack = 1 << 20;  // over api.max_request_bytes: the API answers
+constexpr std::size_t kWebSocketSlack = 1 << 20;  // over the API's queue limit: its longest line
 
 // The pages' Content-Security-Policy: scripts, styles and connections from this origin only.
 constexpr const char* kPagePolicy =
@@ -65,9 +65,23 @@ HttpConnection::HttpConnection(std::shared_ptr<HttpCore> core, asio::ip::tcp::so
     address_ = ec ? "unknown" : remote.address().to_string();
     peer_ = ec ? "unknown" : address_ + ":" + std::to_string(remote.port());
     core_->counters.open++;
+    const std::lock_guard lock(core_->mutex);
+    id_ = core_->next_connection++;
 }
 
-HttpConnection::~HttpConnection() { core_->counters.open--; }
+HttpConnection::~HttpConnection() {
+    core_->counters.open--;
+    const std::lock_guard lock(core_->mutex);
+    core_->waiting.erase(id_);
+}
+
+void HttpConnection::close_for_room() {
+    asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
+        boost::system::error_code ignored;
+        self->stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+        self->stream_.socket().close(ignored);
+    });
+}
 
 void HttpConnection::start() {
     // On the connection's strand from the first step (the stream was made with one).
@@ -80,6 +94,10 @@ void HttpConnection::read_request() {
     parser_->body_limit(kMaxBodyBytes);
     parser_->header_limit(kMaxHeaderBytes);
     stream_.expires_after(kRequestTimeout);
+    {
+        const std::lock_guard lock(core_->mutex);
+        core_->waiting[id_] = {Clock::now(), weak_from_this()};
+    }
     bhttp::async_read(stream_, buffer_, *parser_,
                       [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                           self->on_read(ec);
@@ -87,6 +105,10 @@ void HttpConnection::read_request() {
 }
 
 void HttpConnection::on_read(const boost::system::error_code& ec) {
+    {
+        const std::lock_guard lock(core_->mutex);
+        core_->waiting.erase(id_);
+    }
     if (ec == bhttp::error::end_of_stream) {
         boost::system::error_code ignored;
         stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
@@ -172,11 +194,9 @@ void HttpConnection::upgrade(Request&& req) {
         spdlog::warn("http.websocket_refused peer={}: a page of another origin", peer_);
         return send(json_error(req, bhttp::status::forbidden, "a page of another origin"));
     }
-    std::size_t max_request = 0;
     std::size_t max_line = 0;
     {
         const std::lock_guard lock(core_->mutex);
-        max_request = core_->config.max_request_bytes;
         max_line = core_->config.max_client_queue_bytes + kWebSocketSlack;
     }
     stream_.expires_never();  // the WebSocket's own pings decide from now on
@@ -184,8 +204,9 @@ void HttpConnection::upgrade(Request&& req) {
     ws->set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws->set_option(websocket::stream_base::decorator(
         [](websocket::response_type& res) { res.set(bhttp::field::server, "fibrecelld"); }));
-    // Slightly over the API's own limit: a request just too long gets the API's answer.
-    ws->read_message_max(max_request + kWebSocketSlack);
+    // No limit of the WebSocket's own: the bridge passes a message on piece by piece and the
+    // API's limit answers one that is too long (-32004), as on the socket.
+    ws->read_message_max(0);
     auto self = shared_from_this();
     core_->counters.websockets++;
     ws->async_accept(req, [self, ws, max_line, session = session_id(req)](const boost::system::error_code& ec) {

@@ -25,6 +25,8 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
     HttpConnection(const HttpConnection&) = delete;
     HttpConnection& operator=(const HttpConnection&) = delete;
     void start();
+    // Ends the connection (on its own strand) to make room for a newer one.
+    void close_for_room();
 
   private:
     void read_request();
@@ -41,6 +43,7 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
     std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
     std::string address_;  // the client's IP, for the login limit and logs
     std::string peer_;     // "address:port"
+    std::uint64_t id_ = 0;  // HttpCore::waiting's key
 };
 
 }  // namespace fibrecell::http

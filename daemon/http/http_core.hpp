@@ -10,6 +10,8 @@
 #include <boost/asio/ip/tcp.hpp>
 
 #include <atomic>
+#include <map>
+#include <memory>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -29,6 +31,8 @@ struct HttpCounters {
     std::atomic<std::uint64_t> open{0};  // HTTP connections now (not yet WebSockets)
 };
 
+class HttpConnection;
+
 struct HttpCore {
     HttpCore(boost::asio::io_context& io_context, api::ApiConfig cfg, api::ApiServer& api_server);
 
@@ -45,6 +49,11 @@ struct HttpCore {
     SessionTable sessions;  // guarded
     LoginGuard guard;       // guarded
     Clock::time_point last_busy_warning;  // guarded
+    // Connections waiting for (the rest of) a request, by when they began to wait: when the
+    // listener is full, the one waiting longest makes room for the newcomer (half-sent requests
+    // never keep the dashboard from the operator).
+    std::map<std::uint64_t, std::pair<Clock::time_point, std::weak_ptr<HttpConnection>>> waiting;  // guarded
+    std::uint64_t next_connection = 1;  // guarded
 };
 
 }  // namespace fibrecell::http

@@ -46,13 +46,34 @@ void accept_next(const std::shared_ptr<HttpCore>& core) {
                 }
             }
             if (core->counters.open.load() >= limit) {
+                // Full: the connection that has waited longest for its request goes (a client
+                // that sends half a request and stops); with none waiting, the newcomer does.
+                std::shared_ptr<HttpConnection> oldest;
+                {
+                    const std::lock_guard lock(core->mutex);
+                    auto pick = core->waiting.end();
+                    for (auto it = core->waiting.begin(); it != core->waiting.end(); ++it)
+                        if (!it->second.second.expired() &&
+                            (pick == core->waiting.end() || it->second.first < pick->second.first))
+                            pick = it;
+                    if (pick != core->waiting.end()) {
+                        oldest = pick->second.second.lock();
+                        core->waiting.erase(pick);
+                    }
+                }
                 core->counters.refused_busy++;
                 if (say)
-                    spdlog::warn("http.connection_refused: {} HTTP connections open "
-                                 "(api.max_clients); {} refused so far",
-                                 limit, core->counters.refused_busy.load());
-                boost::system::error_code ignored;
-                socket.close(ignored);
+                    spdlog::warn("http.connection_{}: {} HTTP connections open (api.max_clients); "
+                                 "{} so far",
+                                 oldest ? "closed_for_room" : "refused", limit,
+                                 core->counters.refused_busy.load());
+                if (oldest) {
+                    oldest->close_for_room();
+                    std::make_shared<HttpConnection>(core, std::move(socket))->start();
+                } else {
+                    boost::system::error_code ignored;
+                    socket.close(ignored);
+                }
             } else {
                 std::make_shared<HttpConnection>(core, std::move(socket))->start();
             }

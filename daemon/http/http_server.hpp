@@ -34,7 +34,7 @@ struct HttpStats {
     std::uint64_t login_throttled = 0; // refused unseen: too many wrong tokens from the address
     std::uint64_t websockets = 0;      // WebSocket upgrades accepted (each an API client)
     std::uint64_t unauthorized = 0;    // API requests without a valid session
-    std::uint64_t refused_busy = 0;    // connections closed at once: api.max_clients were open
+    std::uint64_t refused_busy = 0;    // api.max_clients were open: the longest waiting, or this one, closed
     std::uint64_t open = 0;            // HTTP connections open now (a WebSocket is the API's)
 };
 

@@ -61,6 +61,7 @@ bool SessionTable::valid(const std::string& id, Clock::time_point now) {
 }
 
 void LoginGuard::forget_old(Clock::time_point now) {
+    while (!all_failures_.empty() && all_failures_.front() + kWindow <= now) all_failures_.pop_front();
     for (auto it = failures_.begin(); it != failures_.end();) {
         auto& times = it->second;
         while (!times.empty() && times.front() + kWindow <= now) times.pop_front();
@@ -71,6 +72,9 @@ void LoginGuard::forget_old(Clock::time_point now) {
 std::optional<std::chrono::seconds> LoginGuard::wait_for(const std::string& address,
                                                          Clock::time_point now) {
     forget_old(now);
+    const auto total = static_cast<std::size_t>(limit_) * kAddressesPerLimit;
+    if (all_failures_.size() >= total)
+        return std::chrono::ceil<std::chrono::seconds>(all_failures_.front() + kWindow - now);
     const auto it = failures_.find(address);
     if (it == failures_.end() || it->second.size() < static_cast<std::size_t>(limit_))
         return std::nullopt;
@@ -83,6 +87,7 @@ void LoginGuard::failed(const std::string& address, Clock::time_point now) {
     if (failures_.size() >= kMaxTrackedAddresses && !failures_.contains(address))
         failures_.erase(failures_.begin());
     failures_[address].push_back(now);
+    all_failures_.push_back(now);
 }
 
 std::string cookie_value(std::string_view header, std::string_view name) {

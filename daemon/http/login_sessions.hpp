@@ -37,8 +37,12 @@ class SessionTable {
 
 // Wrong tokens per client address in a sliding minute: past the limit, logins from that
 // address are refused without looking at the token until the oldest failure is a minute old.
+// All addresses together have a limit too (`kAddressesPerLimit` times the address's): many
+// addresses (a whole loopback range, a botnet) do not add up to more guesses.
 class LoginGuard {
   public:
+    static constexpr int kAddressesPerLimit = 4;
+
     explicit LoginGuard(int failures_per_minute) : limit_(failures_per_minute) {}
 
     // How long the address must wait; nullopt when it may try now.
@@ -52,6 +56,7 @@ class LoginGuard {
 
     int limit_;
     std::map<std::string, std::deque<Clock::time_point>> failures_;
+    std::deque<Clock::time_point> all_failures_;  // every address's, in the window
 };
 
 // The value of cookie `name` in a Cookie header ("a=1; fibrecell_session=ab12"), or "".

@@ -7,6 +7,12 @@
 
 namespace fibrecell::http {
 
+namespace {
+
+constexpr std::size_t kPieceBytes = 64 * 1024;
+
+}  // namespace
+
 namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
@@ -23,14 +29,17 @@ void WebSocketBridge::start() {
     read_api();
 }
 
+// The browser's messages go to the API as they arrive, a piece at a time, never held whole:
+// the API's own limit decides (a request over api.max_request_bytes is answered -32004 there and
+// the answer comes back here), so a message of any size costs this bridge one piece of memory.
 void WebSocketBridge::read_browser() {
-    ws_.async_read(from_browser_,
-                   [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                       self->on_browser_message(ec);
-                   });
+    ws_.async_read_some(from_browser_, kPieceBytes,
+                        [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                            self->on_browser_piece(ec);
+                        });
 }
 
-void WebSocketBridge::on_browser_message(const boost::system::error_code& ec) {
+void WebSocketBridge::on_browser_piece(const boost::system::error_code& ec) {
     // The browser closed or broke the connection, or its login ended: the API client goes too
     // (an answer may be on its way to the browser, so no closing handshake here).
     if (ec || done_ || !session_valid_()) {
@@ -43,7 +52,7 @@ void WebSocketBridge::on_browser_message(const boost::system::error_code& ec) {
     // tokens (inside a string it must be escaped), so a pretty-printed request means the same.
     for (char& c : to_api_)
         if (c == '\n' || c == '\r') c = ' ';
-    to_api_ += '\n';
+    if (ws_.is_message_done()) to_api_ += '\n';
     asio::async_write(api_, asio::buffer(to_api_),
                       asio::bind_executor(ws_.get_executor(),
                                           [self = shared_from_this()](

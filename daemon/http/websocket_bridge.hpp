@@ -1,6 +1,6 @@
 #pragma once
 // Internal: one dashboard WebSocket joined to its ApiServer client (ApiServer::open_bridge). Each
-// text message from the browser becomes one request line; each line the API sends (answers and
+// text message from the browser becomes one request line (passed on piece by piece); each line the API sends (answers and
 // notifications) becomes one message. One message in flight each way: a browser that stops
 // reading backs up into the API's own per-client queue, which drops it at its limit.
 
@@ -28,7 +28,7 @@ class WebSocketBridge : public std::enable_shared_from_this<WebSocketBridge> {
 
   private:
     void read_browser();
-    void on_browser_message(const boost::system::error_code& ec);
+    void on_browser_piece(const boost::system::error_code& ec);
     void read_api();
     void on_api_line(const boost::system::error_code& ec, std::size_t n);
     void close_browser(boost::beast::websocket::close_code code);

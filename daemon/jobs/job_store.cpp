@@ -266,10 +266,16 @@ JobRecord JobStore::submit(const JobInput& input) {
         r.state = JobState::planning;
         r.submitted_at = r.updated_at = config::utc_now();
         r.start_when_planned = input.start_when_planned;
-        config::write_file_durably(incoming / "state.json", to_json(r).dump(2) + "\n");
-        fs::create_directories(incoming / "plan");
-        fs::rename(incoming, job_dir(r.id));
-        config::sync_directory(jobs_root());
+        try {
+            config::write_file_durably(incoming / "state.json", to_json(r).dump(2) + "\n");
+            fs::create_directories(incoming / "plan");
+            fs::rename(incoming, job_dir(r.id));
+            config::sync_directory(jobs_root());
+        } catch (...) {
+            std::error_code ec;
+            fs::remove_all(incoming, ec);  // its id stays unused
+            throw;
+        }
         r.progress = {"queued", 0};
         jobs_.insert_or_assign(r.id, Entry{r, nullptr});
         spdlog::info("job.submitted job {} '{}'", r.id, r.name);

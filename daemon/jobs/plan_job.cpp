@@ -1,5 +1,6 @@
 #include "daemon/jobs/plan_job.hpp"
 
+#include "daemon/print/part_fit.hpp"
 #include "daemon/print/plan_writer.hpp"
 #include "daemon/sync/board_commands.hpp"
 #include "planner/io/read_model.hpp"
@@ -112,6 +113,8 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
     spdlog::info("plan.read {} vertices, {} tets from {} in {:.3f} s", model.mesh.vertex_count(),
                  model.mesh.tet_count(), r.job.model.mesh_path, read_s);
     control.check_cancel();
+    // Before any work that grows with the part's size (docs/service.md, "Size limits").
+    print::check_part_fits_cell(model.mesh, r.job, request.cell);
 
     r.field = planner::run_field_stage(r.job, std::move(model), control);
     r.field.timings.read = read_s;

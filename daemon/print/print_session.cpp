@@ -158,6 +158,7 @@ void PrintSession::start_engine(std::int64_t first_event,
     sync::SyncOptions o = options_.sync;
     o.first_event = first_event;
     o.resume_feed = resume_feed;
+    o.timings = timings_;  // one print, one set of figures, whatever the engines
     auto engine = std::make_unique<sync::SyncEngine>(program_, links_.extruder, links_.board,
                                                      links_.robot_io, o);
     if (on_done_) engine->on_event_done(on_done_);

@@ -137,6 +137,9 @@ class PrintSession {
     mutable std::mutex mu_;  // guards engine_, status_, earlier_shortfalls_
     std::unique_ptr<sync::SyncEngine> engine_;
     std::vector<sync::Shortfall> earlier_shortfalls_;  // of engines a resume replaced
+    // Every engine's latency samples (result.json's cut_error_mm counts the whole print).
+    std::shared_ptr<sync::EventTimings> timings_ =
+        std::make_shared<sync::EventTimings>(options_.sync.timing_window);
     PrintStatus status_;
 };
 

@@ -15,6 +15,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 namespace fibrecell::daemon::service {
 
@@ -90,6 +91,10 @@ auto as_api(F&& f) -> decltype(f()) {
         throw ApiError::conflict(e.what());
     } catch (const jobs::StateWriteError& e) {
         throw ApiError::unavailable(std::string("unavailable: ") + e.what());  // a full disk
+    } catch (const std::system_error& e) {
+        // A job's files that could not be written (a full disk, an I/O error): nothing was
+        // stored, and another try may succeed once there is room.
+        throw ApiError::unavailable(std::string("unavailable: not stored: ") + e.what());
     }
 }
 

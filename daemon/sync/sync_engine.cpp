@@ -33,12 +33,13 @@ using Input = std::variant<drivers::abb::EventCounterChange, drivers::abb::Robot
 struct SyncEngine::Impl {
     Impl(const drivers::abb::PrintProgram& program, drivers::ExtruderController& extruder,
          drivers::marlin::MarlinLink& board, drivers::abb::RobotIoLink& robot, SyncOptions options)
-        : timings(options.timing_window),
+        : timings(options.timings ? options.timings
+                                  : std::make_shared<EventTimings>(options.timing_window)),
           processor({program, extruder, board, robot}, options, observers,
                     [this](std::uint64_t ticket, std::future<CommandOutcome> reply) {
                         watcher.watch(ticket, std::move(reply));
                     },
-                    timings),
+                    *timings),
           watcher([this](std::uint64_t ticket, const CommandOutcome& outcome,
                          SteadyClock::time_point at) { post(BoardReply{ticket, outcome, at}); }) {}
 
@@ -118,7 +119,7 @@ struct SyncEngine::Impl {
     SyncStatus published;
 
     SyncObservers observers;
-    EventTimings timings;
+    std::shared_ptr<EventTimings> timings;
     EventProcessor processor;  // only the worker thread touches it once started
     ReplyWatcher watcher;
     bool started = false;
@@ -184,7 +185,7 @@ SyncStatus SyncEngine::status() const {
         std::lock_guard lock(impl_->mu);
         s = impl_->published;
     }
-    s.stats.timing = impl_->timings.summary();
+    s.stats.timing = impl_->timings->summary();
     return s;
 }
 

@@ -2,10 +2,12 @@
 // Settings of one print's sync engine: where the run starts, the job's temperatures and PLA line
 // (to meter extrude_pla), the head-switch temperature check, and the metering pace.
 
+#include "daemon/sync/latency_stats.hpp"
 #include "drivers/extruder/extruder_controller.hpp"
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -36,6 +38,9 @@ struct SyncOptions {
     double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
     double time_scale = 1;             // simulated seconds per real second (simulated cell)
     std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
+    // The print's latency samples, shared by the engines of one print (a resume after a device
+    // fault runs a new engine; result.json counts the whole print). Null: the engine's own.
+    std::shared_ptr<EventTimings> timings;
     // Shortfalls (SyncStats::shortfalls): metered feed dropped at a path's end above
     // shortfall_mm (less is within one re-prime), a cut that came late_cut_mm or more after the
     // robot passed its place.

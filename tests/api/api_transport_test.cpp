@@ -1,6 +1,7 @@
 // The socket API's transports on real sockets: the Unix socket file (mode, group, stale and live
 // sockets), the client's one-line errors, TCP with its token, and the client limit.
 #include "api_server_fixture.hpp"
+#include "tests/support/eventually.hpp"
 
 #include <grp.h>
 #include <sys/socket.h>
@@ -17,6 +18,7 @@
 using namespace fibrecell::api;
 using nlohmann::json;
 using namespace std::chrono_literals;
+using fibrecell::test::eventually;
 
 namespace {
 
@@ -209,6 +211,39 @@ TEST_F(ApiTransportTest, TcpWithoutTokenIsUnauthorizedUntilAuth) {
     EXPECT_EQ(c.call("echo", {{"x", 3}}), (json{{"x", 3}}));
 }
 
+// Guessing the token is bounded by the server, not by the number of connections: beyond
+// api.tcp.auth_attempts_per_s the token is not even checked.
+TEST_F(ApiTransportTest, WrongTokensAreCheckedAFewTimesASecondAtMost) {
+    config_.tcp.enabled = true;
+    config_.tcp.auth_attempts_per_s = 3;
+    start();
+    int wrong = 0, not_checked = 0;
+    for (int i = 0; i < 20; ++i) {
+        try {
+            ApiClient::connect(tcp("wrong-token-wrong-token"));
+        } catch (const ApiCallError& e) {
+            if (e.code() == errc::unauthorized) ++wrong;
+            if (e.code() == errc::unavailable) {
+                ++not_checked;
+                EXPECT_STREQ(e.what(), "unavailable: more than 3 server.auth attempts a second "
+                                       "(api.tcp.auth_attempts_per_s); try again shortly");
+            }
+        }
+    }
+    EXPECT_EQ(wrong + not_checked, 20);
+    EXPECT_LE(wrong, 3 + 3);  // the burst, and what a slow machine's seconds refill
+    EXPECT_GE(not_checked, 10);
+    // Once the budget has refilled, the right token gets in.
+    EXPECT_TRUE(eventually([&] {
+        try {
+            ApiClient::connect(tcp(kTcpToken));
+            return true;
+        } catch (const ApiCallError&) {
+            return false;
+        }
+    }, 10s, 200ms));
+}
+
 TEST_F(ApiTransportTest, TcpWithAWrongTokenIsRefusedAndClosed) {
     config_.tcp.enabled = true;
     start();
@@ -292,7 +327,7 @@ TEST_F(ApiTransportTest, StopClosesClientsAndRemovesTheSocket) {
               "fibrecelld is not running (no socket at " + config_.socket_path + ")");
 }
 
-TEST_F(ApiTransportTest, AFullServerKeepsRoomForControlCalls) {
+TEST_F(ApiTransportTest, AFullServerKeepsRoomForControlCallsAndMakesMoreByClosingTheIdlest) {
     config_.max_clients = 3;
     config_.reserved_control_clients = 2;
     start();
@@ -313,10 +348,43 @@ TEST_F(ApiTransportTest, AFullServerKeepsRoomForControlCalls) {
     }
     auto second = ApiClient::connect({.socket_path = config_.socket_path});
     EXPECT_EQ(second.call("halt"), (json{{"halted", true}}));
+    // Max and reserve taken: the next one is let in, and the connection idle longest goes.
     auto beyond = ApiClient::connect({.socket_path = config_.socket_path});
-    EXPECT_THROW(beyond.call("halt"), ApiCallError);  // max + reserved are taken
-    EXPECT_EQ(server_->stats().control_only, 2u);
-    EXPECT_EQ(server_->stats().refused_full, 1u);
+    EXPECT_EQ(beyond.call("halt"), (json{{"halted", true}}));
+    const auto m = idle[0].read_message(10s);
+    ASSERT_TRUE(m) << "the idlest connection was not told";
+    EXPECT_EQ((*m)["error"]["code"], errc::unavailable);
+    EXPECT_EQ((*m)["error"]["message"],
+              "unavailable: closed for a newer connection: fibrecelld serves at most 5 clients at "
+              "once (api.max_clients + api.reserved_control_clients); the one idle longest goes first");
+    EXPECT_TRUE(idle[0].wait_closed(5s));
+    EXPECT_EQ(idle[1].call("echo", {{"x", 1}}), (json{{"x", 1}}));  // the others are still served
+    EXPECT_EQ(server_->stats().control_only, 3u);
+    EXPECT_EQ(server_->stats().evicted, 1u);
+    EXPECT_EQ(server_->stats().refused_full, 0u);
+}
+
+TEST_F(ApiTransportTest, TcpConnectionsThatNeverAuthenticateHaveASmallLimitOfTheirOwn) {
+    config_.tcp.enabled = true;
+    config_.tcp.max_unauthenticated = 2;
+    start();
+    auto first = ApiClient::connect(tcp(""));
+    auto second = ApiClient::connect(tcp(""));
+    // Each asks something (unauthorized), the first last: the second has been idle longer.
+    EXPECT_THROW(second.call("echo"), ApiCallError);
+    EXPECT_THROW(first.call("echo"), ApiCallError);
+    auto third = ApiClient::connect(tcp(""));
+    // The oldest of those still to authenticate made room for the third.
+    const auto m = second.read_message(10s);
+    ASSERT_TRUE(m);
+    EXPECT_EQ((*m)["error"]["message"],
+              "unavailable: closed for a newer connection: at most 2 connections may wait for "
+              "server.auth (api.tcp.max_unauthenticated)");
+    EXPECT_EQ(third.call("server.auth", {{"token", kTcpToken}}), (json{{"authenticated", true}}));
+    // The Unix socket is not touched by them.
+    auto local = ApiClient::connect({.socket_path = config_.socket_path});
+    EXPECT_EQ(local.call("echo", {{"x", 1}}), (json{{"x", 1}}));
+    EXPECT_EQ(server_->stats().evicted, 1u);
 }
 
 TEST_F(ApiTransportTest, AnIdleConnectionIsClosedASubscriberIsNot) {
@@ -354,21 +422,15 @@ TEST_F(ApiTransportTest, TcpIsOffByDefault) {
     EXPECT_EQ(server_->tcp_port(), 0);
 }
 
-TEST_F(ApiTransportTest, ClientsAboveTheLimitAreRefusedWithUnavailable) {
+TEST_F(ApiTransportTest, ANewClientAtTheLimitIsLetInAndOnlyRefusedWhenEveryOtherIsBusy) {
     config_.max_clients = 1;
     config_.reserved_control_clients = 0;
     start();
     auto first = ApiClient::connect({.socket_path = config_.socket_path});
     EXPECT_EQ(first.call("echo", {{"n", 1}}), (json{{"n", 1}}));
     auto second = ApiClient::connect({.socket_path = config_.socket_path});
-    try {
-        second.call("echo");
-        FAIL() << "a client above the limit was served";
-    } catch (const ApiCallError& e) {
-        EXPECT_EQ(e.code(), errc::unavailable);
-        EXPECT_STREQ(e.what(),
-                     "unavailable: fibrecelld serves at most 1 clients at once (api.max_clients)");
-    }
-    EXPECT_EQ(first.call("echo", {{"n", 2}}), (json{{"n", 2}}));
-    EXPECT_EQ(server_->stats().refused_full, 1u);
+    EXPECT_EQ(second.call("echo", {{"n", 2}}), (json{{"n", 2}}));
+    EXPECT_TRUE(first.wait_closed(5s));  // it made room
+    EXPECT_EQ(server_->stats().evicted, 1u);
+    EXPECT_EQ(server_->stats().refused_full, 0u);
 }

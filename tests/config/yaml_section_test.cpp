@@ -105,3 +105,29 @@ TEST(YamlSection, PathsAreAbsoluteOrInTheHomeDirectory) {
     EXPECT_THAT(error_of("a: ~other/x\n", [](Section& t) { t.path_or("a", ""); }),
                 HasSubstr("a: must be an absolute path"));
 }
+
+// YAML allows a key once per mapping; yaml-cpp would keep the first silently.
+TEST(YamlSection, AKeyTwiceInOneMappingIsRefusedWithBothLines) {
+    const auto nothing = [](Section&) {};
+    EXPECT_EQ(error_of("a: 1\nb: 2\na: 3\n", nothing),
+              "cell.yaml: line 3: a: the key appears twice in one mapping (first at line 1)");
+    EXPECT_EQ(error_of("print:\n  x: 1\n  y: 2\n  x: 2\n", nothing),
+              "cell.yaml: line 4: print.x: the key appears twice in one mapping (first at line 2)");
+    EXPECT_EQ(error_of("loads:\n  - {f: 1, f: 2}\n", nothing),
+              "cell.yaml: line 2: loads[0].f: the key appears twice in one mapping (first at line 2)");
+    EXPECT_EQ(error_of("a: {x: 1}\nb: {x: 1}\n", nothing), "");  // the same key in two mappings
+}
+
+// Aliases that expand to billions of values ("billion laughs") are refused before anything
+// walks them.
+TEST(YamlSection, ADocumentThatExpandsBeyondAnyConfigurationIsRefused) {
+    std::string bomb = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+    for (int i = 1; i <= 8; ++i)
+        bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) +
+                std::string(", *a") + std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
+                std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" + std::to_string(i - 1) +
+                ", *a" + std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + ", *a" +
+                std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + "]\n";
+    EXPECT_EQ(error_of(bomb, [](Section&) {}),
+              "cell.yaml: more than 100000 values (aliases that expand?)");
+}

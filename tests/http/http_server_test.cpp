@@ -317,6 +317,13 @@ TEST_F(HttpServerTest, ARequestOverTheApisLimitGetsTheApisAnswer) {
     beast::error_code ec;
     ws->read(buffer, ec);
     EXPECT_EQ(ec, websocket::error::closed) << ec.message();
+
+    // Far over it (3 MiB), the same answer: the WebSocket has no limit of its own to close with.
+    auto far = open_ws(log_in());
+    ASSERT_NE(far, nullptr);
+    far->write(asio::buffer(json{{"jsonrpc", "2.0"}, {"id", 2}, {"method", "echo"},
+                                 {"params", {{"pad", std::string(3 << 20, 'x')}}}}.dump()));
+    EXPECT_EQ(read_json(*far)["error"]["code"], -32004);
 }
 
 TEST_F(HttpServerTest, PlanFilesNeedTheLoginAndStayInTheirFolder) {
@@ -334,34 +341,32 @@ TEST_F(HttpServerTest, PlanFilesNeedTheLoginAndStayInTheirFolder) {
             << target;
 }
 
-TEST_F(HttpServerTest, NoMoreHttpConnectionsThanTheApiHasClients) {
+TEST_F(HttpServerTest, AFullListenerClosesTheConnectionWaitingLongestForTheNewcomer) {
     config_.max_clients = 3;
     http_->update(config_);
-    std::vector<tcp::socket> idle;
-    for (int i = 0; i < 3; ++i) idle.push_back(connect());
-    // Each is served (a round trip proves the server counted it) and kept open.
-    for (auto& s : idle) {
-        bhttp::request<bhttp::empty_body> req{bhttp::verb::get, "/api/session", 11};
-        req.set(bhttp::field::host, "127.0.0.1");
-        bhttp::write(s, req);
-        beast::flat_buffer buffer;
-        Response res;
-        bhttp::read(s, buffer, res);
-        EXPECT_EQ(res.result(), bhttp::status::ok);
+    // Three clients each send half a request (headers without their end) and stop.
+    std::vector<tcp::socket> half;
+    for (int i = 0; i < 3; ++i) {
+        half.push_back(connect());
+        asio::write(half.back(), asio::buffer(std::string("GET /api/session HTTP/1.1\r\nHost: 127.0.0.1\r\n")));
+        const auto deadline = std::chrono::steady_clock::now() + 10s;
+        while (http_->stats().open < static_cast<std::uint64_t>(i + 1) && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(1ms);
     }
-    tcp::socket extra = connect();
+    ASSERT_EQ(http_->stats().open, 3u);
+    // The operator's request is answered: the one waiting longest made room for it.
+    EXPECT_EQ(request(bhttp::verb::get, "/api/session").result(), bhttp::status::ok);
     char byte = 0;
     beast::error_code ec;
-    extra.read_some(asio::buffer(&byte, 1), ec);
-    EXPECT_EQ(ec, asio::error::eof) << "the fourth is closed at once: " << ec.message();
+    half[0].read_some(asio::buffer(&byte, 1), ec);
+    EXPECT_EQ(ec, asio::error::eof) << "the first half-sent request is closed: " << ec.message();
     EXPECT_EQ(http_->stats().refused_busy, 1u);
-
-    idle.pop_back();  // one leaves: once the server has seen it go, there is room again
-    const auto deadline = std::chrono::steady_clock::now() + 10s;
-    while (http_->stats().open >= 3 && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(1ms);
-    EXPECT_EQ(http_->stats().open, 2u);
-    EXPECT_EQ(request(bhttp::verb::get, "/api/session").result(), bhttp::status::ok);
+    // The later ones still wait, and their requests are answered once they end.
+    asio::write(half[2], asio::buffer(std::string("\r\n")));
+    beast::flat_buffer buffer;
+    Response res;
+    bhttp::read(half[2], buffer, res);
+    EXPECT_EQ(res.result(), bhttp::status::ok);
 }
 
 }  // namespace

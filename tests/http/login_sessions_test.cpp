@@ -1,5 +1,5 @@
 // The dashboard's login bookkeeping with the time passed in: session expiry, the per-address
-// limit on wrong tokens, and reading the session cookie out of a Cookie header.
+// and overall limits on wrong tokens, and reading the session cookie out of a Cookie header.
 #include "daemon/http/login_sessions.hpp"
 
 #include <gtest/gtest.h>
@@ -50,6 +50,24 @@ TEST(LoginGuard, TooManyWrongTokensWaitUntilTheOldestIsAMinuteOld) {
     guard.succeeded("10.0.0.1");
     guard.failed("10.0.0.1", t0 + 61s);
     EXPECT_FALSE(guard.wait_for("10.0.0.1", t0 + 61s));
+}
+
+// 200 addresses, one wrong token each: together they meet a limit of their own (four times an
+// address's), and then every address waits, the one with no failure of its own too.
+TEST(LoginGuard, ManyAddressesDoNotAddUpToMoreGuesses) {
+    LoginGuard guard(3);
+    const Clock::time_point t0{};
+    int tried = 0;
+    for (int i = 0; i < 200; ++i) {
+        const std::string address = "127.0.0." + std::to_string(i + 1);
+        if (guard.wait_for(address, t0 + 1s)) continue;
+        guard.failed(address, t0 + 1s);
+        ++tried;
+    }
+    EXPECT_EQ(tried, 3 * LoginGuard::kAddressesPerLimit);
+    ASSERT_TRUE(guard.wait_for("10.9.9.9", t0 + 2s));
+    EXPECT_EQ(*guard.wait_for("10.9.9.9", t0 + 2s), 59s);
+    EXPECT_FALSE(guard.wait_for("10.9.9.9", t0 + 61s)) << "a minute on, logins are open again";
 }
 
 TEST(CookieValue, FindsTheNamedCookieOnly) {

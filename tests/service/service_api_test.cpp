@@ -246,3 +246,31 @@ TEST_F(ServiceTest, APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst) {
     EXPECT_EQ(c.call("job.get", {{"job", id}}).value("state", ""), "printing");
     c.call("job.abort", {{"job", id}});
 }
+
+// `null` and a repeated key are never read as "the default job": the cell's job is untouched.
+TEST_F(ServiceTest, ANullOrRepeatedJobIsRefusedAndTheCellsJobGoesOn) {
+    start_service(write_config("", 5));
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing") << service_->log();
+    for (const char* method : {"job.pause", "job.abort", "job.get"}) {
+        try {
+            c.call(method, {{"job", nullptr}});
+            ADD_FAILURE() << method << " {\"job\": null} was served";
+        } catch (const api::ApiCallError& e) {
+            EXPECT_EQ(e.code(), -32602) << method;
+            EXPECT_EQ(std::string(e.what()), std::string(method) +
+                                                 ": params.job is null; give a whole number or leave it out");
+        }
+    }
+    for (const char* params : {R"({"job": 1, "job": null})", R"({"job": null, "job": 1})"}) {
+        c.send_line(std::string(R"({"jsonrpc":"2.0","id":7,"method":"job.abort","params":)") + params + "}");
+        const auto answer = c.read_message(10s);
+        ASSERT_TRUE(answer);
+        EXPECT_EQ((*answer)["id"], 7);
+        EXPECT_EQ((*answer)["error"]["code"], -32602) << answer->dump();
+        EXPECT_EQ((*answer)["error"]["message"], "job.abort: params.job appears twice; give it once");
+    }
+    EXPECT_EQ(c.call("job.get", {{"job", id}}).value("state", ""), "printing");
+    EXPECT_EQ(c.call("cell.status").value("job", json()), id);
+}

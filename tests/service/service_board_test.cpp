@@ -7,6 +7,7 @@
 
 #include <gmock/gmock.h>
 
+#include <algorithm>
 #include <sstream>
 #include <vector>
 
@@ -16,7 +17,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double board_time_scale = 10;
+constexpr double board_time_scale = 20;
 
 // The commands of the board's --log (time, tab, command), in order.
 std::vector<std::string> board_commands(const fs::path& log) {
@@ -31,6 +32,16 @@ std::vector<std::string> board_commands(const fs::path& log) {
 }
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// How many cut events the plan's program.json has.
+int planned_cuts(const fs::path& program_json) {
+    const json p = json::parse(read_file(program_json));
+    const auto& cols = p.at("event_columns");
+    const auto kind = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), "kind") - cols.begin());
+    int cuts = 0;
+    for (const auto& row : p.at("events")) cuts += row.at(kind) == "cut";
+    return cuts;
+}
 
 }  // namespace
 
@@ -62,6 +73,10 @@ TEST_F(ServiceTest, ABoardThatRestartsMidPrintIsConnectedAgainByTheResume) {
     ASSERT_TRUE(state == "completed" || state == "completed_with_warnings")
         << done.dump(2) << "\n" << service_->log();
     EXPECT_EQ(done["result"]["events_done"], done["result"]["events"]);
+    // result.json times every cut of the print, before the restart and after it.
+    EXPECT_EQ(done["result"]["cut_error_mm"].value("count", 0),
+              planned_cuts(state_dir() / "jobs" / std::to_string(id) / "plan" / "program.json"))
+        << done["result"].dump();
     const json after = c.call("cell.status")["board"];
     EXPECT_EQ(after.value("state", ""), "active");
     EXPECT_TRUE(after.contains("pla_c")) << after.dump();

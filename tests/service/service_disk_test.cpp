@@ -66,6 +66,17 @@ TEST_F(ServiceTest, AFullDiskMidPrintHoldsTheCellAndKeepsTheServiceAnswering) {
     EXPECT_TRUE(service_->running());
     const json cell = c.call("cell.status");  // still answering
     EXPECT_TRUE(cell.is_object());
+    // A job submitted meanwhile is refused as the other writes are, -32005, and nothing of it
+    // is left behind.
+    const std::size_t jobs_before = c.call("job.list").size();
+    try {
+        c.call("job.submit", submit_params(dir_ / "jobs/bar.job.yaml", "bar.vtk", false), 30s);
+        ADD_FAILURE() << "a job was stored on a full disk";
+    } catch (const api::ApiCallError& e) {
+        EXPECT_EQ(e.code(), -32005) << e.what();
+        EXPECT_THAT(e.what(), HasSubstr("No space left on device"));
+    }
+    EXPECT_EQ(c.call("job.list").size(), jobs_before);
 
     fs::remove(state_dir() / "filler");
     c.call("job.abort", {{"job", id}});

@@ -13,7 +13,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double heater_time_scale = 10;
+constexpr double heater_time_scale = 20;
 
 class HeaterTest : public ServiceTest {
   protected:

@@ -195,3 +195,42 @@ TEST_F(ServiceTest, ASettingTheCellCannotPrintRefusesTheSubmitAndStoresNothing) 
     }
     EXPECT_TRUE(c.call("job.list", json::object()).empty());
 }
+
+// One tetrahedron a kilometre wide, a file of a few hundred bytes: refused before any planning
+// work, with the figures, while a part the cell can print behind it plans as usual.
+TEST_F(ServiceTest, APartLargerThanTheCellIsRefusedBeforeAnyPlanningWork) {
+    planner::TetMesh huge;
+    huge.vertices = {{0, 0, 0}, {1e6, 0, 0}, {0, 1e6, 0}, {0, 0, 1e6}};
+    huge.tets = {{0, 1, 2, 3}};
+    std::vector<planner::StressTensor> stress(1, planner::StressTensor::Identity());
+    fibrecell::test::write_vtk_file(dir_ / "jobs/huge.vtk", huge, {.stress = &stress});
+    std::ofstream(dir_ / "jobs/huge.job.yaml") << "name: huge\nmodel:\n  mesh: huge.vtk\n";
+    EXPECT_LT(fs::file_size(dir_ / "jobs/huge.vtk"), 1000u);
+
+    start_service(write_config());
+    auto c = client();
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::int64_t id =
+        c.call("job.submit", submit_params(dir_ / "jobs/huge.job.yaml", "huge.vtk", false), 30s)
+            .value("id", std::int64_t{0});
+    const json failed = wait_for_state(c, id, "failed", 30s);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_EQ(failed.value("state", ""), "failed") << failed.dump(2);
+    EXPECT_THAT(failed.value("reason", ""),
+                HasSubstr("the part as placed is 1000000.0 x 1000000.0 x 1000000.0 mm (x, y, z); this "
+                          "cell takes at most 400 x 400 x 300 mm (part_limits.max_size_mm)"));
+    std::printf("refused in %.3f s: %s\n", seconds, failed.value("reason", "").c_str());
+    EXPECT_LT(seconds, 5.0);  // generous (ASan, a loaded machine); it takes milliseconds
+
+    // Within the size limit but out of the robot's reach: the bar placed 2 m away.
+    std::ofstream(dir_ / "jobs/far.job.yaml")
+        << "name: far\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [2000, 150]\n";
+    const std::int64_t far =
+        c.call("job.submit", submit_params(dir_ / "jobs/far.job.yaml", "bar.vtk", false), 30s)
+            .value("id", std::int64_t{0});
+    const json far_failed = wait_for_state(c, far, "failed", 30s);
+    EXPECT_THAT(far_failed.value("reason", ""), HasSubstr("out of the robot's reach"));
+
+    const std::int64_t bar = submit_bar(c, false);
+    EXPECT_EQ(wait_for_state(c, bar, "planned", 120s).value("state", ""), "planned");
+}

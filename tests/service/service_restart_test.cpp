@@ -250,3 +250,20 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     EXPECT_EQ(lift.back().speed, 0);  // a stop point
     EXPECT_TRUE(service_->terminate(20s));
 }
+
+// Stopped (SIGSTOP) mid-print, the service's heartbeat to the robot stops and FcMain holds the
+// robot; continued, the service says that it was itself stopped, not that the robot was lost.
+TEST_F(ServiceTest, AServiceThatWasStoppedMidPrintSaysSoWhenItRunsAgain) {
+    start_service(write_config("", restart_time_scale));
+    auto c = client();
+    const std::int64_t id = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing") << service_->log();
+    ASSERT_EQ(::kill(service_->pid(), SIGSTOP), 0);
+    std::this_thread::sleep_for(3s);  // the stop itself is the event: three heartbeat timeouts
+    ASSERT_EQ(::kill(service_->pid(), SIGCONT), 0);
+    const json paused = wait_for_state(c, id, "paused", 30s);
+    ASSERT_EQ(paused.value("state", ""), "paused") << paused.dump(2) << service_->log();
+    EXPECT_THAT(paused.value("reason", ""), ::testing::HasSubstr("fibrecelld itself did not run for"));
+    EXPECT_THAT(paused.value("reason", ""), ::testing::Not(::testing::HasSubstr("robot heartbeat lost")));
+    EXPECT_EQ(c.call("job.abort", {{"job", id}}).value("state", ""), "aborted");
+}

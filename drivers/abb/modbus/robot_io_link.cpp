@@ -118,6 +118,7 @@ struct RobotIoLink::Impl {
     std::optional<bool> hb_last;
     IoClock::time_point hb_last_edge{};
     std::optional<IoClock::time_point> last_toggle;  // of heartbeat_out, this connection
+    std::optional<IoClock::time_point> last_digest;  // the last successful read, this connection
     bool hb_armed = false;  // an edge was seen since start(): the watch is on
     bool hb_edge_since_connect = false;
     bool hb_lost_reported = false;
@@ -226,6 +227,7 @@ struct RobotIoLink::Impl {
         hb_lost_reported = false;
         next_heartbeat = now;
         last_toggle.reset();
+        last_digest.reset();
         {
             std::lock_guard lock(mu);
             dirty = out_all;  // rewrite every output, pause first
@@ -359,6 +361,18 @@ struct RobotIoLink::Impl {
 
     // After a successful read: filters, heartbeat watch, events, state.
     void digest(IoClock::time_point now) {
+        // A read long after the one before: this process did not run (SIGSTOP, a frozen VM, a
+        // machine too busy). The robot's heartbeat went unread, not missing; ours stopped, and
+        // FcMain held the robot on it. Said as what it was, and the robot's watch starts over.
+        if (last_digest && now - *last_digest > cfg.robot_heartbeat_timeout) {
+            hb_last_edge = now;
+            enter_fault("robot_io.service_not_running",
+                        "fibrecelld itself did not run for " +
+                            std::to_string(ms_between(*last_digest, now)) +
+                            " ms (stopped, e.g. SIGSTOP, or starved of CPU): its heartbeat to the "
+                            "robot stopped, and FcMain held the robot");
+        }
+        last_digest = now;
         const RobotIoMap& m = cfg.map;
         const std::uint16_t ev = buffers.word(plan, m.event_number);
         const std::uint16_t br = buffers.word(plan, m.barrier_number);
