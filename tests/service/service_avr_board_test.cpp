@@ -6,7 +6,7 @@
 // is faulty all along (1% of the host's lines corrupted) and the MCU stops for 2 s mid-print.
 // Then the MCU resets in the middle of the last fibre path: the job holds with the board named,
 // what the board had taken and not run is fed again, and the resume finishes it. One print for
-// all of it: it takes four minutes of real time.
+// all of it: it takes over two minutes of real time.
 #include "service_fixture.hpp"
 #include "tests/support/piped_process.hpp"
 #include "tools/board-check/board_check.hpp"
@@ -56,6 +56,10 @@ class AvrBoardPrint : public ServiceTest {
             GTEST_SKIP() << "gt2560-avr or the test firmware is not built (libsimavr-dev, gcc-avr)";
         ServiceTest::SetUp();
         fs::copy(fibrecell::test::source_path("examples/strip"), dir_ / "strip");
+        // Twice the example's print speeds (CF 10 mm/s is still a speed fibre heads lay at): the
+        // same events in about two thirds of the time; this test sets the suite's floor.
+        std::ofstream(dir_ / "strip/strip.job.yaml", std::ios::app)
+            << "\nprocess:\n  pla: {speed_mm_s: 24}\n  ccf: {speed_mm_s: 10}\n";
         // Real-time heaters, a little quicker than a real hotend's: 25 -> 250 C in about 12 s.
         std::string text = read_file(write_config(
             "extruder: {link: {port: " + tty().string() + "}}\n", /*time_scale=*/1));
@@ -168,7 +172,7 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
     // The interrupted path: what the firmware had acknowledged but not yet run when it reset was
     // lost with its queue; the service takes it off the fed amount by the board's feed rate and
     // feeds it again on resume. So the path is short by the feed the service reports as dropped
-    // and no more than a model's error (0.03 mm seen; 0.5 to 3.9 mm when nothing was taken back).
+    // and no more than a model's error (0.02-0.3 mm seen; 0.9 to 3.9 mm when nothing was taken back).
     const auto& interrupted = r.paths[7];
     double reported = 0;
     for (const auto& f : done["result"].value("shortfalls", json::array())) reported += f.value("mm", 0.0);
@@ -176,13 +180,15 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
     // The service counts the board's queue in wall time from when it reads the firmware's
     // `start`: what ran between the reset and that line (a busy host reads it late) and real
     // time the simulated MCU wrote off just before the reset (a machine too busy to run it at
-    // real time, which a real board never is) are unknown to it, at the feed rate each.
+    // real time, which a real board never is) are unknown to it, at the feed rate each; and on
+    // a loaded machine the times it read the board's `ok`s by have been off by up to 64 ms (at
+    // 5 mm/s, 0.32 mm unaccounted for; with nothing taken back, 0.9 to 3.9 mm): 75 ms allowed.
     const double seen_after_s = std::max(0.0, std::chrono::duration<double>(*reset_seen - reset_sent).count());
-    const double late_mm = (seen_after_s + slip_s) * fibre_mm_s;
+    const double late_mm = (seen_after_s + slip_s + 0.075) * fibre_mm_s;
     std::printf("interrupted fibre path: planned %.3f mm, fed %.3f mm: %.3f mm reported as dropped, "
-                "%.3f mm unaccounted for; the reset seen %.1f ms after it was sent and %.1f ms "
-                "written off by the MCU: %.3f mm at %.2f mm/s\n",
-                interrupted.planned_mm, interrupted.fed_mm, reported, unknown, seen_after_s * 1e3,
-                slip_s * 1e3, late_mm, fibre_mm_s);
+                "%.3f mm unaccounted for; allowed: 0.1 mm and, at %.2f mm/s, the reset seen "
+                "%.1f ms after it was sent, %.1f ms written off by the MCU and 75 ms: %.3f mm\n",
+                interrupted.planned_mm, interrupted.fed_mm, reported, unknown, fibre_mm_s,
+                seen_after_s * 1e3, slip_s * 1e3, late_mm);
     EXPECT_NEAR(unknown, 0.0, 0.1 + late_mm);
 }
