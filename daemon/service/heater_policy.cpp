@@ -42,6 +42,9 @@ void HeaterPolicy::ended(std::int64_t job, const std::string& outcome, Clock::ti
 }
 
 void HeaterPolicy::observe(bool heating, Clock::time_point now) {
+    // The board reports its targets once a second: the reports just after the off was sent
+    // still show the old ones.
+    if (heating && off_sent_at_ && now - *off_sent_at_ < std::chrono::seconds(3)) heating = false;
     heating_ = heating;
     if (!heating) idle_heating_since_.reset();
     else if (!idle_heating_since_) idle_heating_since_ = now;
@@ -80,6 +83,7 @@ std::optional<std::string> HeaterPolicy::due(Clock::time_point now) const {
 
 void HeaterPolicy::switched_off(const std::string& reason, Clock::time_point now) {
     last_off_ = reason;
+    off_sent_at_ = now;
     heating_ = false;
     idle_heating_since_.reset();
     if (mode_ == Mode::paused) {

@@ -59,6 +59,7 @@ class HeaterPolicy {
     std::optional<Clock::time_point> idle_heating_since_;  // idle: first seen heating
     bool sent_ = false;                        // paused, held: off already sent
     std::string last_off_;
+    std::optional<Clock::time_point> off_sent_at_;
 };
 
 }  // namespace fibrecell::daemon::service

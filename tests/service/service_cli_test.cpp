@@ -60,6 +60,10 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
     EXPECT_EQ(parsed[0]["state"], "completed");
     const CliRun status = fibrecell_cli("status" + sock);
     EXPECT_THAT(status.out, HasSubstr("cell test-cell (simulated)"));
+    // The heaters went off with the print's end (within a poll of the print runner).
+    EXPECT_TRUE(eventually([&] {
+        return fibrecell_cli("status" + sock).out.find("heaters: off (job 1 completed)") != std::string::npos;
+    }, 10s, 200ms)) << fibrecell_cli("status" + sock).out;
 
     const CliRun conflict = fibrecell_cli("pause" + sock);
     EXPECT_EQ(conflict.status, 1);

@@ -88,7 +88,7 @@ TEST_F(HeaterTest, TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAF
 }
 
 TEST_F(HeaterTest, AHoldKeepsThemHotForTheNextPrintThenTheyGoOff) {
-    start_cell("print: {heater_hold_min: 0.05}\n");  // 3 s
+    start_cell("print: {heater_hold_min: 0.1}\n");  // 6 s
     auto c = client();
     const std::int64_t id = print_until(c, 4);
     ASSERT_EQ(c.call("job.abort", {{"job", id}}).value("state", ""), "aborted");
@@ -97,7 +97,7 @@ TEST_F(HeaterTest, AHoldKeepsThemHotForTheNextPrintThenTheyGoOff) {
                            5s)) << heaters(c).dump();
     EXPECT_TRUE(board_heating());
     const json held = heaters(c);
-    EXPECT_LE(held.value("off_in_s", 99.0), 3.0) << held.dump();
+    EXPECT_LE(held.value("off_in_s", 99.0), 6.0) << held.dump();
     EXPECT_TRUE(eventually([&] { return board_heaters_off(); }, 15s)) << service_->log();
     EXPECT_THAT(heaters(c).value("last_off", ""), HasSubstr("print.heater_hold_min"));
 }
@@ -116,9 +116,8 @@ TEST_F(HeaterTest, AnIdleCellTurnsThemOffAndSoDoesAServiceThatStops) {
     start_service(dir_ / "cell.yaml");
     auto c = client();
     ASSERT_EQ(c.call("job.get", {{"job", id}}).value("state", ""), "interrupted");
-    EXPECT_TRUE(eventually([&] { return heaters(c).value("on", false); }, 10s)) << heaters(c).dump();
-    EXPECT_THAT(heaters(c).value("why", ""), HasSubstr("no job on the cell"));
     EXPECT_TRUE(eventually([&] { return board_heaters_off(); }, 15s)) << service_->log();
+    EXPECT_THAT(heaters(c).value("last_off", json()).dump(), HasSubstr("no job on the cell for"));
     EXPECT_THAT(service_->log(), HasSubstr("print.heaters_off no job on the cell"));
 
     // Resumed, then the service is stopped: the job comes back interrupted, the heaters off.

@@ -154,6 +154,13 @@ std::string cell_details(const json& cell) {
         << "\n";
     if (has(cell, "board"))
         out << "  board:  " << text(cell["board"], "state") << "  " << temperatures(cell) << "\n";
+    if (has(cell, "heaters")) {  // why they are on, and when they go off (docs/service.md)
+        const json& h = cell["heaters"];
+        out << "  heaters: " << (h.value("on", false) ? "on, " + text(h, "why") : std::string("off"));
+        if (has(h, "off_in_s")) out << "; off in " << fixed(number(h, "off_in_s"), 0) << " s";
+        if (!h.value("on", false) && has(h, "last_off")) out << " (" << text(h, "last_off") << ")";
+        out << "\n";
+    }
     if (has(cell, "robot")) {
         const json& r = cell["robot"];
         out << "  robot:  I/O " << text(r, "io")
