@@ -77,3 +77,23 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
     EXPECT_EQ(second.status, 0) << second.out;
     EXPECT_THAT(second.out, HasSubstr("job 2 (bar) completed: "));
 }
+
+// A start the cell refuses (here the extruder board's port is not there) sends the job back to
+// planned with the reason: `submit --start --watch` ends there, with the reason and exit 1,
+// instead of watching a planned job for ever.
+TEST_F(ServiceTest, SubmitStartWatchEndsWhenTheStartIsRefused) {
+    std::string text = read_file(write_config(
+        "extruder: {link: {port: " + (dir_ / "no-such-tty").string() + "}}\n"
+        "print: {connect_timeout_s: 1}\n", /*time_scale=*/1));  // an external board: real time
+    const std::string from = "residency_s: 0.5}";
+    text.replace(text.find(from), from.size(), "residency_s: 0.5, board: external}");
+    std::ofstream(dir_ / "cell.yaml") << text;
+    start_service(dir_ / "cell.yaml");
+    const std::string sock = " --socket " + socket().string();
+    const CliRun watched =
+        fibrecell_cli("submit " + (dir_ / "jobs/bar.job.yaml").string() + " --start --watch" + sock);
+    EXPECT_EQ(watched.status, 1) << watched.out;
+    EXPECT_THAT(watched.out, HasSubstr("job 1: starting"));
+    EXPECT_THAT(watched.out, HasSubstr("job 1: planned ("));
+    EXPECT_THAT(watched.out, HasSubstr("no-such-tty"));
+}

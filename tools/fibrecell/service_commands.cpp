@@ -114,8 +114,9 @@ void print_folders(const json& job) {
         std::cout << "  result      " << (dir / "result.json").string() << "\n";
 }
 
-// Follows a job until it ends: a live line (redrawn in place on a terminal, else a line every few
-// seconds), a line for every state change; returns the exit code (0 completed).
+// Follows a job until it ends (or its start is refused): a live line (redrawn in place on a
+// terminal, else a line every few seconds), a line for every state change; returns the exit code
+// (0 completed).
 int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     const bool tty = ::isatty(STDOUT_FILENO) && !c.json_output;
     client.call("subscribe", {{"topics", json::array({std::to_string(id), "cell"})}});
@@ -128,7 +129,13 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     std::string last_line, last_progress;
     auto last_print = std::chrono::steady_clock::now() - 1h;
     auto last_refresh = std::chrono::steady_clock::now();
-    while (!is_final_state(state)) {
+    // A start that was refused sends the job back to planned (or interrupted) with the reason:
+    // after `starting`, that is where this watch ends too.
+    bool started = state == "starting";
+    const auto ended = [&] {
+        return is_final_state(state) || (started && (state == "planned" || state == "interrupted"));
+    };
+    while (!ended()) {
         const auto n = client.next_notification(500ms);
         if (n) {
             if (c.json_output) std::cout << json{{"method", n->method}, {"params", n->params}}.dump() << std::endl;
@@ -149,6 +156,7 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
         const std::string now_state = job.value("state", "");
         if (now_state != state) {
             state = now_state;
+            started = started || state == "starting";
             if (!c.json_output) {
                 if (tty) std::cout << "\r\x1b[K";
                 std::cout << "job " << id << ": " << state
