@@ -32,24 +32,30 @@ std::string unix_peer(int fd) {
     return "unix uid=" + std::to_string(cred.uid) + " pid=" + std::to_string(cred.pid);
 }
 
-// The connections not on their way out.
-std::vector<std::shared_ptr<ClientSession>> open_sessions(const ServerCore& core) {
-    std::vector<std::shared_ptr<ClientSession>> live;
+std::vector<std::shared_ptr<ClientSession>> live_sessions(const ServerCore& core) {
+    std::vector<std::shared_ptr<ClientSession>> out;
     for (const auto& [id, weak] : core.sessions)
-        if (auto s = weak.lock(); s && !s->closing()) live.push_back(std::move(s));
-    return live;
+        if (auto s = weak.lock()) out.push_back(std::move(s));
+    return out;
+}
+
+// The connections not on their way out (a closing one drains for at most 2 s).
+std::vector<std::shared_ptr<ClientSession>> open_sessions(const ServerCore& core) {
+    auto open = live_sessions(core);
+    std::erase_if(open, [](const auto& s) { return s->closing(); });
+    return open;
 }
 
 // Whom to close to make room: a connection that has not authenticated first, then the one idle
 // longest; never one with a call in progress, nor the newcomer. Null when there is none.
-std::shared_ptr<ClientSession> longest_idle(const std::vector<std::shared_ptr<ClientSession>>& live,
+std::shared_ptr<ClientSession> longest_idle(const std::vector<std::shared_ptr<ClientSession>>& open,
                                             std::uint64_t newcomer, bool unauthenticated_only) {
     std::shared_ptr<ClientSession> pick;
     const auto before = [](const ClientSession& a, const ClientSession& b) {
         if (a.unauthenticated_tcp() != b.unauthenticated_tcp()) return a.unauthenticated_tcp();
         return a.last_active() < b.last_active();
     };
-    for (const auto& s : live) {
+    for (const auto& s : open) {
         if (s->id() == newcomer || s->busy()) continue;
         if (unauthenticated_only && !s->unauthenticated_tcp()) continue;
         if (!pick || before(*s, *pick)) pick = s;
@@ -84,25 +90,25 @@ void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket
     auto session =
         std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer));
     core->sessions[id] = session;
-    auto live = open_sessions(*core);
+    auto open = open_sessions(*core);
     if (session->unauthenticated_tcp()) {
         const auto limit = static_cast<std::size_t>(core->config.tcp.max_unauthenticated);
-        const auto waiting = std::count_if(live.begin(), live.end(),
+        const auto waiting = std::count_if(open.begin(), open.end(),
                                            [](const auto& s) { return s->unauthenticated_tcp(); });
         if (static_cast<std::size_t>(waiting) > limit) {
-            if (auto oldest = longest_idle(live, id, true)) {
+            if (auto oldest = longest_idle(open, id, true)) {
                 make_room(*core, oldest, "max_unauthenticated",
                           "unavailable: closed for a newer connection: at most " +
                               std::to_string(limit) +
                               " connections may wait for server.auth (api.tcp.max_unauthenticated)");
-                live = open_sessions(*core);
+                open = open_sessions(*core);
             }
         }
     }
     const auto max = static_cast<std::size_t>(core->config.max_clients);
     const auto reserved = static_cast<std::size_t>(core->config.reserved_control_clients);
-    if (live.size() > max + reserved) {
-        auto victim = longest_idle(live, id, false);
+    if (open.size() > max + reserved) {
+        auto victim = longest_idle(open, id, false);
         if (!victim) {  // every other connection has a call in progress
             core->counters.refused_full++;
             spdlog::warn("api.client_refused client={} peer={} reason=max_clients limit={}+{}", id,
@@ -118,9 +124,9 @@ void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket
                       std::to_string(max + reserved) +
                       " clients at once (api.max_clients + api.reserved_control_clients); the one "
                       "idle longest goes first");
-        live = open_sessions(*core);
+        open = open_sessions(*core);
     }
-    if (live.size() > max) {
+    if (open.size() > max) {
         core->counters.control_only++;
         session->restrict_to_control();
         spdlog::debug("api.client_control_only client={} peer={}: {} clients connected, this one "
@@ -178,13 +184,6 @@ void accept_tcp(const std::shared_ptr<ServerCore>& core) {
             admit(core, std::move(generic), Transport::tcp, std::move(peer));
             accept_tcp(core);
         }));
-}
-
-std::vector<std::shared_ptr<ClientSession>> live_sessions(const ServerCore& core) {
-    std::vector<std::shared_ptr<ClientSession>> out;
-    for (const auto& [id, weak] : core.sessions)
-        if (auto s = weak.lock()) out.push_back(std::move(s));
-    return out;
 }
 
 // Closes listeners and removes the socket file; `graceful` lets queued answers go out first.

@@ -35,11 +35,8 @@ bool starts_with(const std::string& s, const char* prefix) { return s.rfind(pref
 
 // How many cut events the plan's program.json has.
 int planned_cuts(const fs::path& program_json) {
-    const json p = json::parse(read_file(program_json));
-    const auto& cols = p.at("event_columns");
-    const auto kind = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), "kind") - cols.begin());
     int cuts = 0;
-    for (const auto& row : p.at("events")) cuts += row.at(kind) == "cut";
+    for (const auto& [sequence, e] : planned_events(program_json)) cuts += e.kind == "cut";
     return cuts;
 }
 

@@ -20,10 +20,12 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <string>
 
 namespace fibrecell::test {
@@ -31,6 +33,25 @@ namespace fibrecell::test {
 using namespace std::chrono_literals;
 using nlohmann::json;
 namespace fs = std::filesystem;
+
+// The planned events of a job: kind and length_mm by sequence (program.json's event table).
+struct PlannedEvent {
+    std::string kind;
+    double length_mm = 0;
+};
+
+inline std::map<std::int64_t, PlannedEvent> planned_events(const fs::path& program_json) {
+    const json p = json::parse(read_file(program_json));
+    const auto& cols = p.at("event_columns");
+    const auto col = [&](const std::string& name) {
+        return static_cast<std::size_t>(std::find(cols.begin(), cols.end(), name) - cols.begin());
+    };
+    std::map<std::int64_t, PlannedEvent> out;
+    for (const auto& row : p.at("events"))
+        out[row.at(col("sequence")).get<std::int64_t>()] = {
+            row.at(col("kind")).get<std::string>(), row.at(col("length_mm")).get<double>()};
+    return out;
+}
 
 // A loopback TCP port free right now (the kernel's choice), for the service's TCP listener.
 inline int free_tcp_port() {

@@ -81,25 +81,6 @@ bool laying_fibre_after(const fs::path& p, std::int64_t at_least) {
     return r.value("kind", "") == "fibre_start" && r.value("seq", std::int64_t{0}) >= at_least;
 }
 
-// The planned events of a job: kind and length_mm by sequence (program.json's event table).
-struct PlannedEvent {
-    std::string kind;
-    double length_mm = 0;
-};
-
-std::map<std::int64_t, PlannedEvent> planned_events(const fs::path& program_json) {
-    const json p = json::parse(read_file(program_json));
-    const auto& cols = p.at("event_columns");
-    const auto col = [&](const std::string& name) {
-        return static_cast<std::size_t>(std::find(cols.begin(), cols.end(), name) - cols.begin());
-    };
-    std::map<std::int64_t, PlannedEvent> out;
-    for (const auto& row : p.at("events"))
-        out[row.at(col("sequence")).get<std::int64_t>()] = {
-            row.at(col("kind")).get<std::string>(), row.at(col("length_mm")).get<double>()};
-    return out;
-}
-
 // The journal's last `fed` record: {fibre_start, mm}; {0, 0} when none.
 std::pair<std::int64_t, double> last_fed(const fs::path& p) {
     std::ifstream in(p);
