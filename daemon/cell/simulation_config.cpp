@@ -23,6 +23,7 @@ SimulationConfig load_simulation_config(config::Section s) {
     c.residency_s = s.number("residency_s", c.residency_s, 0, 60);
     c.heater_power_w = s.number("heater_power_w", c.heater_power_w, 0, 1000, true);
     c.heater_loss_w_per_k = s.number("heater_loss_w_per_k", c.heater_loss_w_per_k, 0, 100, true);
+    c.heater_fan_loss_w_per_k = s.number("heater_fan_loss_w_per_k", c.heater_fan_loss_w_per_k, 0, 100);
     c.heat_capacity_j_per_k = s.number("heat_capacity_j_per_k", c.heat_capacity_j_per_k, 0, 10'000, true);
     c.ambient_c = s.number("ambient_c", c.ambient_c, -40, 80);
     c.board_emergency_parser = s.get_or("board_emergency_parser", c.board_emergency_parser);

@@ -9,9 +9,10 @@
 //     hotend_tau_s: 8       # the mock hotends' first-order time constant (simulated s)
 //     residency_s: 2        # M109's residency in the temperature window (simulated s)
 //     heater_power_w: 40    # gt2560-avr's hotends (drivers/sim/avr/hotend_thermal.hpp): the
-//     heater_loss_w_per_k: 0.12        # cartridge at full duty, the loss to the air, the
-//     heat_capacity_j_per_k: 5         # block's heat capacity (time constant C/k = 42 s) and
-//     ambient_c: 25                    # the air; the mock board uses hotend_tau_s instead
+//     heater_loss_w_per_k: 0.05        # cartridge at full duty, the loss in still air, what the
+//     heater_fan_loss_w_per_k: 0.04    # part fan adds at full duty, the block's heat capacity
+//     heat_capacity_j_per_k: 10        # (time constant C/k = 200 s) and the air; the mock
+//     ambient_c: 25                    # board uses hotend_tau_s instead
 //     board_emergency_parser: true     # the mock board's firmware is built with EMERGENCY_PARSER,
 //                                      # as the cell's should be; false: stock Marlin 1.1.9
 //     main_module: ""       # FcMain.mod to load; empty: the installed one, else the source tree's
@@ -33,8 +34,9 @@ struct SimulationConfig {
     double hotend_tau_s = 8;
     double residency_s = 2;
     double heater_power_w = 40;
-    double heater_loss_w_per_k = 0.12;
-    double heat_capacity_j_per_k = 5;
+    double heater_loss_w_per_k = 0.05;
+    double heater_fan_loss_w_per_k = 0.04;
+    double heat_capacity_j_per_k = 10;
     double ambient_c = 25;
     bool board_emergency_parser = true;
     std::string main_module;

@@ -51,16 +51,21 @@ TEST(BoardPins, InvertedDirectionCountsTheOtherWay) {
     EXPECT_EQ(p.extruder(1).net_steps, -105);
 }
 
-TEST(BoardPins, HeaterOnTimeIsSplitAtEachTake) {
+TEST(BoardPins, HeaterAndFanOnTimeIsSplitAtEachTake) {
     BoardPins p;
     p.edge(BoardPin::heater0, true, 1.0);
     p.edge(BoardPin::heater0, false, 1.25);
-    EXPECT_NEAR(p.take_heater_on_s(0, 2.0), 0.25, 1e-12);
+    EXPECT_NEAR(p.take_on_s(BoardPin::heater0, 2.0), 0.25, 1e-12);
     p.edge(BoardPin::heater0, true, 2.5);
-    EXPECT_NEAR(p.take_heater_on_s(0, 3.0), 0.5, 1e-12);  // still on: counted up to the take
+    EXPECT_NEAR(p.take_on_s(BoardPin::heater0, 3.0), 0.5, 1e-12);  // still on: counted up to the take
     p.edge(BoardPin::heater0, false, 3.25);
-    EXPECT_NEAR(p.take_heater_on_s(0, 4.0), 0.25, 1e-12);
-    EXPECT_NEAR(p.take_heater_on_s(1, 4.0), 0.0, 1e-12);
+    EXPECT_NEAR(p.take_on_s(BoardPin::heater0, 4.0), 0.25, 1e-12);
+    EXPECT_NEAR(p.take_on_s(BoardPin::heater1, 4.0), 0.0, 1e-12);
+    // The part fan's PWM, counted the same way for the hotends' extra loss.
+    p.edge(BoardPin::fan, true, 4.0);
+    p.edge(BoardPin::fan, false, 4.002);
+    p.edge(BoardPin::fan, true, 4.004);
+    EXPECT_NEAR(p.take_on_s(BoardPin::fan, 4.005), 0.003, 1e-12);
 }
 
 TEST(BoardPins, ServoPulseWidthAndCutterEdgesOnD11) {

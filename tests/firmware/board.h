@@ -14,6 +14,24 @@
 #define MAX_LINE 96
 #define KEEPALIVE_MS 2000      /* HOST_KEEPALIVE_FEATURE's interval */
 
+/* Build options (tests/firmware/CMakeLists.txt builds both ways where it matters):
+ * INVERT_E_DIR  1: the E direction pins are low for forward, as the Geeetech GT2560 example
+ *               configuration's INVERT_E0_DIR / INVERT_E1_DIR true
+ * HEATER_PID    1: Marlin's PID with the example's gains and PID_FUNCTIONAL_RANGE 10; 0: bang-bang
+ * WATCH_TEMP_PERIOD_S, WATCH_TEMP_INCREASE_C: Marlin's heating watchdog (stock 20 s, 2 C) */
+#ifndef INVERT_E_DIR
+#define INVERT_E_DIR 0
+#endif
+#ifndef HEATER_PID
+#define HEATER_PID 0
+#endif
+#ifndef WATCH_TEMP_PERIOD_S
+#define WATCH_TEMP_PERIOD_S 20
+#endif
+#ifndef WATCH_TEMP_INCREASE_C
+#define WATCH_TEMP_INCREASE_C 2
+#endif
+
 /* clock.c: milliseconds since reset (timer 0). */
 void clock_init(void);
 uint32_t millis(void);
@@ -26,11 +44,13 @@ void serial_write_char(char c);
 void serial_write_long(int32_t v);
 void serial_write_tenths(int32_t tenths); /* 215 -> "21.5" */
 
-/* heaters.c: thermistors on ADC8/ADC9, bang-bang heaters on PE4/PE5. */
+/* heaters.c: thermistors on ADC8/ADC9, heaters on PE4/PE5 (bang-bang or PID, soft PWM), the
+ * heating watchdog. */
 void heaters_init(void);
-void heaters_manage(void);      /* reads both sensors and switches the heaters, every 100 ms */
+void heaters_manage(void);      /* reads, controls and watches every sample; the PWM every call */
 float heater_temp(uint8_t h);
 float heater_target(uint8_t h);
+uint8_t heater_power(uint8_t h); /* 0..255, Marlin's @ figure */
 void heater_set_target(uint8_t h, float c);
 void heaters_off(void);
 

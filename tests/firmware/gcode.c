@@ -1,6 +1,6 @@
 /* The subset of Marlin 1.1.9's serial protocol a print uses, with Marlin's message texts:
  * numbered, checksummed lines (N.. *..) answered with ok, or an error, `Resend:` and ok;
- * M104/M105/M109/M155 on the bang-bang heaters, G1 E as step pulses at the feed rate, M82/M83,
+ * M104/M105/M109/M155 on the heaters (heaters.c), G1 E as step pulses at the feed rate, M82/M83,
  * G92 E, G4, T0/T1, M42 P11, M280 P0, M400, M110, M115, M112. */
 #include "board.h"
 
@@ -57,7 +57,12 @@ static void heater_states(void) {
     temp_pair(" T:", tool);
     temp_pair(" T0:", 0);
     temp_pair(" T1:", 1);
-    serial_write(" @:0 @0:0 @1:0");
+    serial_write(" @:");
+    serial_write_long(heater_power(tool));
+    serial_write(" @0:");
+    serial_write_long(heater_power(0));
+    serial_write(" @1:");
+    serial_write_long(heater_power(1));
 }
 
 void idle(void) {
@@ -147,7 +152,7 @@ static uint8_t tool_of(const char* args) {
 static void m115(void) {
     serial_write("FIRMWARE_NAME:fibrecell-test-firmware (tests/firmware) SOURCE_CODE_URL:none "
                  "PROTOCOL_VERSION:1.0 MACHINE_TYPE:GT2560 EXTRUDER_COUNT:2 UUID:none\n"
-                 "Cap:AUTOREPORT_TEMP:1\nCap:EMERGENCY_PARSER:0\nCap:THERMAL_PROTECTION:0\n");
+                 "Cap:AUTOREPORT_TEMP:1\nCap:EMERGENCY_PARSER:0\nCap:THERMAL_PROTECTION:1\n");
 }
 
 static void execute(char* cmd) {

@@ -21,7 +21,7 @@ static volatile bool running;
 
 static void set_dir(uint8_t e, bool forward) {
     const uint8_t bit = e == 0 ? _BV(PL4) : _BV(PL2);
-    if (forward) PORTL |= bit;
+    if (forward != INVERT_E_DIR) PORTL |= bit;
     else PORTL &= (uint8_t)~bit;
 }
 

@@ -192,3 +192,49 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
                 seen_after_s * 1e3, slip_s * 1e3, late_mm);
     EXPECT_NEAR(unknown, 0.0, 0.1 + late_mm);
 }
+
+// A hotend that cannot heat (a cartridge of 0.05 W) under the test firmware's heating watchdog
+// (Marlin's rule, 2 C in 5 s in this build): the firmware halts during the heat-up, the start is
+// refused with the firmware's own words, and `fibrecell submit --start --watch` ends on it within
+// a second, exit 1. After a reset of the board the job starts again.
+TEST_F(AvrBoardPrint, AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable) {
+    std::string text = read_file(dir_ / "cell.yaml");
+    const std::string from = "heat_capacity_j_per_k: 2}";
+    text.replace(text.find(from), from.size(), "heat_capacity_j_per_k: 2, heater_power_w: 0.05}");
+    std::ofstream(dir_ / "cell.yaml") << text;
+    start_board();
+    start_service(dir_ / "cell.yaml");
+    PipedProcess cli(fibrecell::test::binary_path("tools/fibrecell"),
+                     {"submit", (dir_ / "strip/strip.job.yaml").string(), "--start", "--watch",
+                      "--socket", socket().string()});
+    const auto refused = cli.read_line_starting("job 1: planned (", 180s);
+    ASSERT_TRUE(refused) << cli.read_stderr() << service_->log();
+    EXPECT_NE(refused->find("Error:Heating failed, system stopped! Heater_ID: "), std::string::npos) << *refused;
+    ASSERT_EQ(cli.wait(10s), 1);
+    const auto exited = std::chrono::system_clock::now();
+    const auto logged = logged_at(service_->log(), "print.start_refused");
+    ASSERT_TRUE(logged) << service_->log();
+    const double after_s = std::chrono::duration<double>(exited - *logged).count();
+    std::printf("the watch ended %.0f ms after the service refused the start\n", after_s * 1e3);
+    EXPECT_LT(after_s, 1.0);
+
+    auto c = client();
+    const json job = c.call("job.get", {{"job", 1}});
+    EXPECT_EQ(job.value("state", ""), "planned");
+    EXPECT_NE(job.value("reason", "").find("Heating failed"), std::string::npos) << job.dump(2);
+    board_command("reset");
+    // The board boots again; the service takes the start once it has the link back.
+    std::string state;
+    ASSERT_TRUE(eventually([&] {
+        try {
+            state = c.call("job.start", {{"job", 1}}).value("state", "");
+            return true;
+        } catch (const api::ApiCallError&) {
+            return false;
+        }
+    }, 60s, 500ms)) << service_->log();
+    EXPECT_EQ(state, "starting");
+    // The same cartridge: refused again, for the same reason.
+    const json again = wait_for_state(c, 1, "planned", 120s);
+    EXPECT_NE(again.value("reason", "").find("Heating failed"), std::string::npos) << again.dump(2);
+}

@@ -38,6 +38,9 @@ const std::string firmware_elf =
     fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware.elf");
 const std::string firmware_hex =
     fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware.hex");
+// Built as the Geeetech example configures stock Marlin: E direction inverted, PID heaters.
+const std::string geeetech_elf =
+    fibrecell::test::binary_path("tests/firmware/gt2560-test-firmware-geeetech.elf");
 
 // The host end of the board's USB serial port: raw bytes, lines with a deadline.
 class Host {
@@ -361,6 +364,45 @@ TEST_F(Gt2560Avr, AResetRebootsTheMcuButTheHotendStaysHot) {
     // The firmware forgot its target; the metal did not cool in a moment.
     EXPECT_NE(report.back().find(" /0.0"), std::string::npos) << report.back();
     EXPECT_GT(status()["hotends"][0]["temp_c"].get<double>(), 190);
+}
+
+// A firmware built with INVERT_E0_DIR/INVERT_E1_DIR (dir low = forward): read as the default
+// convention, every feed counts backwards; with --invert-e-dir, forwards.
+TEST_F(Gt2560Avr, AnInvertedDirectionBuildFeedsForwardOnlyWhenTheSimulatorIsToldSo) {
+    for (const bool told : {false, true}) {
+        SCOPED_TRACE(told ? "--invert-e-dir" : "default convention");
+        start(geeetech_elf, told ? std::vector<std::string>{"--invert-e-dir"} : std::vector<std::string>{});
+        host->command("M83");
+        ASSERT_FALSE(host->command("M109 T1 S200", 60s).empty()) << "M109 timed out";
+        host->command("T1");
+        host->command("G1 E10 F600");
+        host->command("M400");
+        EXPECT_NEAR(status()["extruders"][1]["mm"].get<double>(), told ? 10.0 : -10.0, 1e-9);
+        host.reset();
+        board->write_line("quit");
+        ASSERT_EQ(board->wait(10s), 0) << board->read_stderr();
+    }
+}
+
+// Marlin's heating watchdog (the test firmware's default build: 2 C in 5 s, so that this takes
+// seconds): a hotend that does not heat (a cartridge of 0.05 W) halts the firmware with Marlin's
+// words, heaters off, and it answers nothing more until a reset.
+TEST_F(Gt2560Avr, TheHeatingWatchdogHaltsAHotendThatDoesNotHeatUntilAReset) {
+    std::ofstream(dir.path() / "cell.yaml")
+        << "simulated: true\nsimulation: {heater_power_w: 0.05, heat_capacity_j_per_k: 0.5}\n";
+    start();
+    host->send("M104 T1 S250");
+    const auto lines = host->until("Error:Printer halted", 30s);
+    ASSERT_FALSE(lines.empty()) << "no halt";
+    EXPECT_TRUE(contains(lines, "Error:Heating failed, system stopped! Heater_ID: 1"));
+    const Json s = status();
+    EXPECT_FALSE(s["hotends"][1]["heater_on"].get<bool>());
+    EXPECT_LT(s["hotends"][1]["temp_c"].get<double>(), 30);
+    host->send("M105");
+    EXPECT_FALSE(host->line(1s)) << "a halted firmware answered";
+    control("reset");
+    ASSERT_FALSE(host->until("start").empty()) << "no boot line after the reset";
+    EXPECT_FALSE(host->command("M105").empty());
 }
 
 TEST_F(Gt2560Avr, LoadsIntelHexTooAndQuitsCleanly) {

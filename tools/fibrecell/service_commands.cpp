@@ -114,10 +114,10 @@ void print_folders(const json& job) {
         std::cout << "  result      " << (dir / "result.json").string() << "\n";
 }
 
-// Follows a job until it ends (or its start is refused): a live line (redrawn in place on a
-// terminal, else a line every few seconds), a line for every state change; returns the exit code
-// (0 completed).
-int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
+// Follows a job until it ends (or its start is refused; with `until_paused`, or it pauses): a
+// live line (redrawn in place on a terminal, else a line every few seconds), a line for every
+// state change; returns the exit code (0 completed).
+int watch(const Connection& c, api::ApiClient& client, std::int64_t id, bool until_paused) {
     const bool tty = ::isatty(STDOUT_FILENO) && !c.json_output;
     client.call("subscribe", {{"topics", json::array({std::to_string(id), "cell"})}});
     json job = client.call("job.get", {{"job", id}});
@@ -133,7 +133,8 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     // after `starting`, that is where this watch ends too.
     bool started = state == "starting";
     const auto ended = [&] {
-        return is_final_state(state) || (started && (state == "planned" || state == "interrupted"));
+        return is_final_state(state) || (started && (state == "planned" || state == "interrupted")) ||
+               (until_paused && state == "paused");
     };
     while (!ended()) {
         const auto n = client.next_notification(500ms);
@@ -203,6 +204,12 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id) {
     return job.value("state", "") == "completed" ? 0 : 1;
 }
 
+// For scripts that cannot resume a job (CI, tools/try-firmware.sh): a pause ends the watch too.
+void add_until_paused(CLI::App& cmd, bool& flag) {
+    cmd.add_flag("--until-paused", flag,
+                 "also end when the job pauses (exit 1), instead of following it until resumed");
+}
+
 // One verb that names a job (or defaults to the job on the cell) and prints the new state.
 void add_job_action(CLI::App& app, int& exit_code, const std::string& verb, const std::string& method,
                     const std::string& help, bool job_required) {
@@ -243,11 +250,13 @@ void add_service_commands(CLI::App& app, int& exit_code) {
         auto file = std::make_shared<std::string>();
         auto start = std::make_shared<bool>(false);
         auto follow = std::make_shared<bool>(false);
+        auto until_paused = std::make_shared<bool>(false);
         cmd->add_option("job", *file, "job YAML")->required()->check(CLI::ExistingFile);
         cmd->add_flag("--start", *start, "print it as soon as it is planned");
         cmd->add_flag("--watch", *follow, "follow it until it ends");
+        add_until_paused(*cmd, *until_paused);
         add_connection_options(*cmd, *c);
-        cmd->callback([&exit_code, c, file, start, follow] {
+        cmd->callback([&exit_code, c, file, start, follow, until_paused] {
             guarded(exit_code, [&] {
                 const json params = submit_params(*file, *start);
                 api::ApiClient client = c->connect();
@@ -258,7 +267,7 @@ void add_service_commands(CLI::App& app, int& exit_code) {
                     std::cout << "job " << id << " (" << config::printable(job.value("name", ""))
                               << ") submitted: "
                               << job.value("state", "") << (*start ? ", prints when planned" : "") << "\n";
-                return *follow ? watch(*c, client, id) : 0;
+                return *follow ? watch(*c, client, id, *until_paused) : 0;
             });
         });
     }
@@ -306,12 +315,14 @@ void add_service_commands(CLI::App& app, int& exit_code) {
         auto* cmd = app.add_subcommand("watch", "follow a job's progress until it ends");
         auto c = std::make_shared<Connection>();
         auto id = std::make_shared<std::int64_t>(0);
+        auto until_paused = std::make_shared<bool>(false);
         cmd->add_option("job", *id, "job id (default: the job on the cell, else the latest)");
+        add_until_paused(*cmd, *until_paused);
         add_connection_options(*cmd, *c);
-        cmd->callback([&exit_code, c, id] {
+        cmd->callback([&exit_code, c, id, until_paused] {
             guarded(exit_code, [&] {
                 api::ApiClient client = c->connect();
-                return watch(*c, client, *id != 0 ? *id : current_job(client));
+                return watch(*c, client, *id != 0 ? *id : current_job(client), *until_paused);
             });
         });
     }

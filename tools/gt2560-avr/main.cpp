@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
         if (!cell_path.empty()) {
             const auto sim = fibrecell::daemon::load_cell_config(cell_path).simulation;
             o.hotend = {.power_w = sim.heater_power_w, .loss_w_per_k = sim.heater_loss_w_per_k,
+                        .fan_loss_w_per_k = sim.heater_fan_loss_w_per_k,
                         .heat_capacity_j_per_k = sim.heat_capacity_j_per_k, .ambient_c = sim.ambient_c};
         }
         avr::AvrBoard board(o);

@@ -15,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
@@ -185,9 +186,13 @@ struct AvrBoard::Impl {
     }
 
     void start_thermal() {
-        for (int h = 0; h < 2; ++h)
-            avr_raise_irq(adc[h], static_cast<std::uint32_t>(thermistor_millivolts(temp_c[h])));
+        for (int h = 0; h < 2; ++h) raise_thermistor(h);
         avr_cycle_timer_register(mcu, period_cycles(), &Impl::on_thermal_tick, this);
+    }
+
+    // The thermistor's voltage on the hotend's ADC pin, to the nearest millivolt (simavr's unit).
+    void raise_thermistor(int h) {
+        avr_raise_irq(adc[h], static_cast<std::uint32_t>(std::lround(thermistor_millivolts(temp_c[h]))));
     }
 
     avr_cycle_count_t period_cycles() const {
@@ -224,11 +229,13 @@ struct AvrBoard::Impl {
     static avr_cycle_count_t on_thermal_tick(avr_t*, avr_cycle_count_t when, void* param) {
         auto* b = static_cast<Impl*>(param);
         const double t = b->sim_s();
+        const double fan = b->pins->take_on_s(BoardPin::fan, t) / thermal_period_s;
         for (int h = 0; h < 2; ++h) {
-            const double duty = b->pins->take_heater_on_s(h, t) / thermal_period_s;
+            const double duty =
+                b->pins->take_on_s(h == 0 ? BoardPin::heater0 : BoardPin::heater1, t) / thermal_period_s;
             b->duty_avg[h] += (duty - b->duty_avg[h]) * (thermal_period_s / duty_average_s);
-            b->temp_c[h] = hotend_step(b->temp_c[h], duty, thermal_period_s, b->o.hotend);
-            avr_raise_irq(b->adc[h], static_cast<std::uint32_t>(thermistor_millivolts(b->temp_c[h])));
+            b->temp_c[h] = hotend_step(b->temp_c[h], duty, fan, thermal_period_s, b->o.hotend);
+            b->raise_thermistor(h);
         }
         return when + b->period_cycles();
     }

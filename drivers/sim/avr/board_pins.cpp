@@ -52,11 +52,10 @@ void BoardPins::edge(BoardPin pin, bool level, double t_s) {
             break;
         }
         case BoardPin::heater0:
-        case BoardPin::heater1: {
-            const int h = pin == BoardPin::heater0 ? 0 : 1;
-            if (!level) heater_on_s_[h] += t_s - std::max(was_since, heater_taken_s_[h]);
+        case BoardPin::heater1:
+        case BoardPin::fan:
+            if (!level) on_s_[i] += t_s - std::max(was_since, taken_s_[i]);
             break;
-        }
         case BoardPin::d11:
             d11_.push_back({t_s, pin, level});
             if (d11_.size() > o_.d11_edges_kept) d11_.pop_front();
@@ -70,12 +69,12 @@ void BoardPins::reset(double t_s) {
     for (int i = 0; i < board_pin_count; ++i) edge(static_cast<BoardPin>(i), false, t_s);
 }
 
-double BoardPins::take_heater_on_s(int heater, double t_s) {
-    const BoardPin pin = heater == 0 ? BoardPin::heater0 : BoardPin::heater1;
-    double on = heater_on_s_[heater];
-    if (level(pin)) on += t_s - std::max(since_s_[static_cast<int>(pin)], heater_taken_s_[heater]);
-    heater_on_s_[heater] = 0;
-    heater_taken_s_[heater] = t_s;
+double BoardPins::take_on_s(BoardPin pin, double t_s) {
+    const int i = static_cast<int>(pin);
+    double on = on_s_[i];
+    if (level(pin)) on += t_s - std::max(since_s_[i], taken_s_[i]);
+    on_s_[i] = 0;
+    taken_s_[i] = t_s;
     return on;
 }
 

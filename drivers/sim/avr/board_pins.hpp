@@ -58,8 +58,8 @@ class BoardPins {
     std::uint64_t edges(BoardPin pin) const { return counts_[static_cast<int>(pin)]; }
     // The last high pulse on D11 shorter than 3 ms (a servo pulse) [us]; 0 if none.
     double servo_pulse_us() const { return servo_pulse_us_; }
-    // The heater's on-time since the last call, up to t_s [s].
-    double take_heater_on_s(int heater, double t_s);
+    // A heater's or the fan's on-time since the last call for it, up to t_s [s] (other pins: 0).
+    double take_on_s(BoardPin pin, double t_s);
     const BoardPinsOptions& options() const { return o_; }
 
   private:
@@ -69,8 +69,8 @@ class BoardPins {
     std::array<double, board_pin_count> since_s_{};
     std::array<std::uint64_t, board_pin_count> counts_{};
     std::array<ExtruderSteps, 2> extruders_{};
-    std::array<double, 2> heater_on_s_{};
-    std::array<double, 2> heater_taken_s_{};
+    std::array<double, board_pin_count> on_s_{};     // the heaters' and fan's on-time not taken
+    std::array<double, board_pin_count> taken_s_{};
     std::deque<PinEdge> d11_;
     double servo_pulse_us_ = 0;
 };
