@@ -4,6 +4,8 @@
 // reading of Eq. 2 removes on the reference data (the shared folder beside the repository; that
 // part is skipped, with the reason, when the data is missing). Run from a Release build:
 //   build/release/bench/field_bench [--reference ../shared/data/reference-fea]
+//   build/release/bench/field_bench --tets N     one plate of about N tets, with the peak memory
+//                                                 (the FEA's cost at the part limits' max_tets)
 
 #include "bench_parts.hpp"
 #include "config/durable_file.hpp"
@@ -17,8 +19,12 @@
 #include "planner/stopwatch.hpp"
 #include "tests/support/shared_data.hpp"
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <string>
 #include <tuple>
@@ -102,14 +108,14 @@ FieldTimes run_field(const TetMesh& mesh, const std::vector<StressTensor>& stres
     return t;
 }
 
-void bench_sizes() {
+void bench_sizes(const std::vector<PaperRow>& rows) {
     std::printf(
         "Vector-field stage on Loop-like plates of the paper's sizes (seconds; paper: "
         "i7-9750H, 6 cores)\n\n");
     std::printf("%-7s %7s | %6s %6s %6s %6s | %7s %8s %7s | %7s %7s %6s | %7s\n", "paper", "tets",
                 "fea", "vtk MB", "read", "princ.", "MST", "paper", "ratio", "removal", "paper",
                 "ratio", "p+r");
-    for (const PaperRow& row : kPaper) {
+    for (const PaperRow& row : rows) {
         const TetMesh mesh = loop_like_plate(row.tets);
         Stopwatch clock;
         const FeaResult fea = solve_linear_elastic(mesh, end_load(mesh));
@@ -170,9 +176,19 @@ void bench_reference(const std::string& dir) {
 
 int main(int argc, char** argv) {
     std::string reference = fibrecell::test::reference_fea_dir().string();
-    for (int i = 1; i + 1 < argc; ++i)
+    int tets = 0;
+    for (int i = 1; i + 1 < argc; ++i) {
         if (std::string(argv[i]) == "--reference") reference = argv[i + 1];
-    bench_sizes();
+        if (std::string(argv[i]) == "--tets") tets = std::atoi(argv[i + 1]);
+    }
+    if (tets > 0) {
+        bench_sizes({{"--tets", tets, 0, 0}});
+        rusage usage{};
+        getrusage(RUSAGE_SELF, &usage);
+        std::printf("\npeak memory (max RSS) %.0f MB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);
+        return 0;
+    }
+    bench_sizes(std::vector<PaperRow>(std::begin(kPaper), std::end(kPaper)));
     bench_reference(reference);
     return 0;
 }

@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 
 namespace {
@@ -122,16 +123,24 @@ int main(int argc, char** argv) {
     wait_reload();
 
     boost::asio::signal_set stop_signals(io, SIGTERM, SIGINT);
+    bool stopped_cleanly = true;
     stop_signals.async_wait([&](const boost::system::error_code& ec, int signal) {
         if (ec) return;
         spdlog::info("service.stopping signal={}", signal);
         sd.stopping("stopping: pausing any print and saving jobs");
-        service.stop();
+        stopped_cleanly = service.stop();
         reload_signal.cancel();
         watchdog_timer.cancel();
         io.stop();
     });
 
     io.run();
+    if (!stopped_cleanly) {
+        // A planner thread is inside a step it cannot leave (a factorisation): the jobs and the
+        // devices are already saved and stopped; ending here keeps the stop within systemd's
+        // TimeoutStopSec instead of a SIGKILL later.
+        spdlog::shutdown();
+        std::_Exit(0);
+    }
     return 0;
 }

@@ -12,6 +12,7 @@ PartLimits load_part_limits(config::Section s) {
             s.fail("max_size_mm", "each size must be in (0, 5000] mm, got " +
                                       std::to_string(l.max_size_mm[i]));
     l.max_layers = s.integer("max_layers", l.max_layers, 1, 100000);
+    l.max_tets = s.integer("max_tets", l.max_tets, 1, 10'000'000);
     s.finish();
     return l;
 }

@@ -12,6 +12,8 @@ namespace fibrecell::daemon {
 struct PartLimits {
     std::array<double, 3> max_size_mm{400, 400, 300};  // the part as placed, x y z on the bed
     int max_layers = 2000;                             // PLA layers (its height / layer height)
+    // Tetrahedra of the mesh: the FEA's memory and time grow with them (docs/service.md).
+    int max_tets = 300'000;
 };
 
 // Reads and checks the section (bounds, unknown keys); throws config::ConfigError naming the key.

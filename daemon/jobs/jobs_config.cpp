@@ -13,6 +13,7 @@ JobsConfig load_jobs_config(config::Section s) {
     c.max_queued = s.integer("max_queued", c.max_queued, 1, 10000);
     c.keep_completed = s.integer("keep_completed", c.keep_completed, 0, 100000);
     c.plan_retries = s.integer("plan_retries", c.plan_retries, 0, 10);
+    c.stop_grace_s = s.number("stop_grace_s", c.stop_grace_s, 0, 25);
     s.finish();
     return c;
 }

@@ -8,6 +8,8 @@
 //     max_queued: 16                   # jobs waiting for or in planning; more are refused
 //     keep_completed: 50               # ended jobs kept; the oldest beyond are removed
 //     plan_retries: 3                  # restarts during one job's planning before it fails
+//     stop_grace_s: 10                 # a service stop waits this long for planning to stop;
+//                                      # past it, it exits without waiting (docs/service.md)
 
 #include "config/yaml_section.hpp"
 
@@ -22,6 +24,7 @@ struct JobsConfig {
     int max_queued = 16;       // 1..10000
     int keep_completed = 50;   // 0..100000
     int plan_retries = 3;      // 0..10
+    double stop_grace_s = 10;  // 0..25: within systemd's TimeoutStopSec (30 s) with the rest
 };
 
 // Reads and checks the section (ranges, unknown keys; state_dir belongs to the top level);

@@ -56,15 +56,50 @@ void PlanRunner::wait_idle() {
 }
 
 void PlanRunner::stop() {
+    cancel_all();
+    for (auto& t : workers_) t.join();
+    workers_.clear();
+}
+
+void PlanRunner::cancel_all() {
     {
         std::lock_guard lock(mu_);
-        if (stopping_ && workers_.empty()) return;
         stopping_ = true;
         for (auto& [id, token] : running_) token->cancel();
     }
     cv_.notify_all();
-    for (auto& t : workers_) t.join();
-    workers_.clear();
+}
+
+bool PlanRunner::join(std::chrono::milliseconds grace) {
+    std::vector<std::int64_t> stuck;
+    {
+        std::unique_lock lock(mu_);
+        if (!cv_.wait_for(lock, grace, [&] { return running_.empty(); }))
+            for (const auto& [id, token] : running_) stuck.push_back(id);
+    }
+    if (stuck.empty()) {
+        stop();
+        return true;
+    }
+    for (const std::int64_t id : stuck) store_.planning_stopped(id);
+    return false;
+}
+
+std::string PlanRunner::running_summary() const {
+    std::vector<std::int64_t> ids;
+    {
+        std::lock_guard lock(mu_);
+        for (const auto& [id, token] : running_) ids.push_back(id);
+    }
+    std::string out;
+    for (const std::int64_t id : ids) {
+        out += (out.empty() ? "job " : ", job ") + std::to_string(id);
+        try {
+            out += " (stage " + store_.get(id).progress.stage + ")";
+        } catch (const std::exception&) {  // removed meanwhile
+        }
+    }
+    return out;
 }
 
 void PlanRunner::work() {

@@ -15,6 +15,7 @@
 #include "planner/executor.hpp"
 #include "planner/progress.hpp"
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -22,6 +23,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -60,6 +62,15 @@ class PlanRunner {
     // Cancels running plans (their jobs stay planning and are planned again after a restart,
     // without counting as a retry) and joins the workers. Queued jobs stay planning.
     void stop();
+    // A stop in two steps, for a service that must end within a deadline: cancel, do the rest
+    // of its stop, then wait at most `grace` for the workers to reach a cancel check. False: a
+    // worker is still inside one step (a factorisation); its job was put back as above, and
+    // the workers still run, so the caller must end the process (std::_Exit) without
+    // destroying this runner.
+    void cancel_all();
+    bool join(std::chrono::milliseconds grace);
+    // The jobs a worker is planning now, with their stage (for the log of an unfinished stop).
+    std::string running_summary() const;
 
   private:
     void work();
@@ -70,7 +81,7 @@ class PlanRunner {
     std::function<void(std::int64_t, const JobProgress&)> on_progress_;
     std::function<void(const JobRecord&)> on_finished_;
 
-    std::mutex mu_;
+    mutable std::mutex mu_;
     std::condition_variable cv_;
     std::deque<std::int64_t> queue_;
     std::map<std::int64_t, std::shared_ptr<planner::CancelToken>> running_;

@@ -36,6 +36,11 @@ std::string point(const Eigen::Vector3d& p) {
 
 void check_part_fits_cell(const planner::TetMesh& mesh, const planner::JobSpec& job,
                           const CellConfig& cell) {
+    if (mesh.tet_count() > static_cast<std::size_t>(cell.part_limits.max_tets))
+        throw PartDoesNotFit(fmt::format(
+            "the mesh has {} tetrahedra; this cell plans at most {} (part_limits.max_tets): "
+            "a coarser mesh plans the same part",
+            mesh.tet_count(), cell.part_limits.max_tets));
     const planner::Placement placement = planner::placement_for(mesh, job.placement);
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
     for (const Eigen::Vector3d& v : mesh.vertices) {

@@ -235,17 +235,27 @@ std::string Service::reload(const ServiceConfig& next) {
     return what;
 }
 
-void Service::stop() {
-    if (stopping_ || !store_) return;
+bool Service::stop() {
+    if (stopping_ || !store_) return true;
     stopping_ = true;
     feed_log_to(nullptr);
     ticker_.cancel();
     if (http_) http_->stop();
     if (api_) api_->stop();
-    if (planner_) planner_->stop();
+    if (planner_) planner_->cancel_all();
     if (printer_) printer_->stop();
     if (devices_) devices_->disconnect();
+    const auto grace = std::chrono::duration_cast<std::chrono::milliseconds>(
+        std::chrono::duration<double>(config_.jobs.stop_grace_s));
+    const std::string planning = planner_ ? planner_->running_summary() : "";
+    if (planner_ && !planner_->join(grace)) {
+        spdlog::warn("service.stop_unfinished planning of {} did not reach a cancel check within "
+                     "{} s (jobs.stop_grace_s): not waiting for it; it plans again at the next start",
+                     planning, config_.jobs.stop_grace_s);
+        return false;
+    }
     spdlog::info("service.stopped");
+    return true;
 }
 
 void Service::tick() {

@@ -51,8 +51,10 @@ class Service {
     // and token, heater time-out); returns what was applied or why nothing was.
     std::string reload(const ServiceConfig& next);
     // SIGTERM: no new requests, planning stopped (re-queued on the next start), a running print
-    // paused and left for resume, devices disconnected, the socket removed.
-    void stop();
+    // paused and left for resume, devices disconnected, the socket removed. False: planning was
+    // still inside one step after jobs.stop_grace_s; the caller ends the process at once
+    // (std::_Exit), not waiting for it, so that the stop keeps within systemd's timeout.
+    bool stop();
 
     // For systemd's STATUS= line and the watchdog.
     std::string one_line_status() const;

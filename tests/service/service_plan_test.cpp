@@ -234,3 +234,38 @@ TEST_F(ServiceTest, APartLargerThanTheCellIsRefusedBeforeAnyPlanningWork) {
     const std::int64_t bar = submit_bar(c, false);
     EXPECT_EQ(wait_for_state(c, bar, "planned", 120s).value("state", ""), "planned");
 }
+
+// A stop while a job plans: the service waits for planning only jobs.stop_grace_s (here 0, so a
+// plan is always caught inside a step; the default is 10 s, within systemd's 30 s stop timeout),
+// then exits, saying so, with the devices stopped as usual. The job plans again at the next start.
+TEST_F(ServiceTest, AStopDoesNotWaitForPlanningPastItsGraceAndTheJobPlansAtTheNextStart) {
+    fs::copy(fibrecell::test::source_path("examples/loop"), dir_ / "loop");
+    std::string text = read_file(write_config());
+    const std::string from = "jobs: {planner_threads: 1}";
+    text.replace(text.find(from), from.size(), "jobs: {planner_threads: 1, stop_grace_s: 0}");
+    std::ofstream(dir_ / "cell.yaml") << text;
+    start_service(dir_ / "cell.yaml");
+    std::int64_t id = 0;
+    {
+        auto c = client();
+        id = c.call("job.submit", submit_params(dir_ / "loop/loop.job.yaml", "loop.msh", false), 30s)
+                 .value("id", std::int64_t{0});
+        ASSERT_TRUE(eventually([&] {
+            const json j = c.call("job.get", {{"job", id}});
+            const std::string stage = j.contains("planning") ? j["planning"].value("stage", "") : "";
+            return !stage.empty() && stage != "queued" && stage != "read";
+        }, 60s, 20ms)) << service_->log();
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_TRUE(service_->terminate(20s)) << service_->log();
+    const double stop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("stopped in %.3f s while planning\n", stop_s);
+    EXPECT_LT(stop_s, 5.0);  // it takes milliseconds; generous for ASan on a loaded machine
+    EXPECT_THAT(service_->log(), HasSubstr("service.stop_unfinished planning of job " + std::to_string(id) + " (stage "));
+    EXPECT_EQ(state_on_disk(state_dir(), id), "planning");
+
+    start_service(write_config());
+    auto c = client();
+    const json planned = wait_for_state(c, id, "planned", 120s);
+    ASSERT_EQ(planned.value("state", ""), "planned") << planned.dump(2) << service_->log();
+}
