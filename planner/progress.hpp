@@ -27,6 +27,32 @@ class CancelToken {
     std::atomic<bool> cancelled_{false};
 };
 
+// Loops deep in the geometry (over paths, grid rows, curves) stop a cancelled plan without taking
+// its token as a parameter: a stage sets the token for the thread around each piece of work
+// (CancelScope, on every thread that runs one) and the loops call cancellation_point(), a load
+// and a compare while nothing is cancelled. Geometry code must be exception safe for it (RAII).
+namespace detail {
+inline thread_local const CancelToken* thread_cancel = nullptr;
+}
+
+class CancelScope {
+  public:
+    explicit CancelScope(const CancelToken* token) : previous_(detail::thread_cancel) {
+        detail::thread_cancel = token;
+    }
+    ~CancelScope() { detail::thread_cancel = previous_; }
+    CancelScope(const CancelScope&) = delete;
+    CancelScope& operator=(const CancelScope&) = delete;
+
+  private:
+    const CancelToken* previous_;
+};
+
+// Throws Cancelled when the plan this thread works for was cancelled.
+inline void cancellation_point() {
+    if (const CancelToken* token = detail::thread_cancel) token->throw_if_cancelled();
+}
+
 // stage: stable stage name ("read", "fea", "mst_reorientation", ...); fraction in [0, 1].
 using ProgressSink = std::function<void(std::string_view stage, double fraction)>;
 

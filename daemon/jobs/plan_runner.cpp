@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <new>
 
 namespace fibrecell::daemon::jobs {
 
@@ -173,6 +174,13 @@ void PlanRunner::plan_one(std::int64_t id) {
         if (stopping) store_.planning_stopped(id);
         spdlog::info("job.plan_cancelled job {}", id);
         return;
+    } catch (const std::bad_alloc&) {
+        // The memory a plan takes is bounded by part_limits (docs/service.md, "Memory"); a
+        // machine short of it fails this job, and the service and the other jobs go on.
+        const std::string why = "planning ran out of memory: the machine could not give the planner "
+                                "what this part needs (std::bad_alloc)";
+        spdlog::error("job.plan_failed job {}: {}", id, why);
+        result = store_.apply(id, JobAction::plan_failed, why);
     } catch (const std::exception& e) {
         spdlog::warn("job.plan_failed job {}: {}", id, e.what());
         result = store_.apply(id, JobAction::plan_failed, e.what());

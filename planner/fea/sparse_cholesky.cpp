@@ -102,9 +102,11 @@ std::optional<SingularPivot> SparseCholesky::factorise(const SparseMatrix& lower
     if (backend_->solver == LinearSolver::cholmod_supernodal) {
         CholmodLlt& llt = backend_->cholmod;
         llt.compute(lower);
+        if (llt.status() == CHOLMOD_OUT_OF_MEMORY)
+            throw FeaError("out of memory in the factorisation of " + std::to_string(lower.rows()) +
+                           " unknowns (CHOLMOD)");
         if (llt.status() < 0)
-            throw FeaError("CHOLMOD failed with status " + std::to_string(llt.status()) +
-                           " (out of memory?)");
+            throw FeaError("CHOLMOD failed with status " + std::to_string(llt.status()));
         if (llt.info() != Eigen::Success) return SingularPivot{llt.failed_dof(), 0.0};
         llt.for_each_pivot(visit);
     } else {

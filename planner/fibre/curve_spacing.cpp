@@ -2,6 +2,7 @@
 
 #include "planner/fibre/polyline_resample.hpp"
 #include "planner/fibre/segment_grid.hpp"
+#include "planner/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,11 +30,13 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
         grid.insert_polyline(paths[i], closed[i], static_cast<int>(i));
     double best = cap;
     for (std::size_t i = 0; i < paths.size(); ++i)
-        for (const auto& p : paths[i])
+        for (const auto& p : paths[i]) {
+            cancellation_point();  // a layer's paths can hold a million points
             grid.around(p, [&](const TaggedSegment& s) {
                 if (s.tag != static_cast<int>(i))
                     best = std::min(best, point_segment_distance(p, s.a, s.b));
             });
+        }
     return best;
 }
 
@@ -104,6 +107,7 @@ double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
     double best = cap;
     for (std::size_t i = 0; i < paths.size(); ++i)
         for (std::size_t k = 0; k < paths[i].size(); ++k) {
+            cancellation_point();
             const Eigen::Vector2d& p = paths[i][k];
             grid.around(p, [&](const TaggedSegment& seg) {
                 const Piece& piece = segs[static_cast<std::size_t>(seg.tag)];

@@ -1,6 +1,7 @@
 #include "planner/fibre/laid_fibre.hpp"
 
 #include "planner/fibre/polyline_resample.hpp"
+#include "planner/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +118,7 @@ std::vector<LaidPiece> LaidFibre::lay_open(const std::vector<Eigen::Vector2d>& p
     };
     double along = 0;
     for (std::size_t k = 0; k < pts.size(); ++k) {
+        cancellation_point();
         if (k > 0) along += (pts[k] - pts[k - 1]).norm();
         while (!pending.empty() && pending.front().along <= along - 4 * w_) {
             own.insert({pending.front().a, pending.front().b, 0});

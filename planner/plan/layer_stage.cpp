@@ -148,7 +148,8 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     std::mutex progress_mutex;  // the sink is called by one task at a time
     std::size_t finished = 0;
     const auto plan_layer = [&](std::size_t i) {
-        control.check_cancel();
+        const CancelScope scope(control.cancel);  // for the loops inside a layer's work
+        cancellation_point();
         const ScheduledLayer& s = schedule[i];
         LayerWork& w = work[i];
         w.layer = {s.index, s.z, s.head, s.thickness, {}};

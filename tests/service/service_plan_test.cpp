@@ -8,6 +8,7 @@
 #include "tests/support/project_paths.hpp"
 
 #include <gmock/gmock.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -268,4 +269,49 @@ TEST_F(ServiceTest, AStopDoesNotWaitForPlanningPastItsGraceAndTheJobPlansAtTheNe
     auto c = client();
     const json planned = wait_for_state(c, id, "planned", 120s);
     ASSERT_EQ(planned.value("state", ""), "planned") << planned.dump(2) << service_->log();
+}
+
+// Memory: what a plan takes is bounded before it is allocated (part_limits; docs/service.md,
+// "Memory"), and a machine that still cannot give it fails that job alone. Shown on the running
+// service with its address space capped (prlimit on its pid) just above what it uses idle: the
+// FEA of a 30k-tet bar needs more, the job fails saying so, and the next job plans. Release
+// builds only: ASan reserves terabytes of address space and cannot run under such a cap
+// (.ci/run runs this test in its Release build).
+TEST_F(ServiceTest, APlanThatRunsOutOfMemoryFailsAloneAndTheServiceGoesOn) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "address-space limits do not work under AddressSanitizer";
+#else
+    const auto mesh = planner::structured_tet_mesh({.size = {100, 20, 10}, .cells = {50, 10, 10}});
+    fibrecell::test::write_vtk_file(dir_ / "jobs/big.vtk", mesh, {});
+    std::ofstream(dir_ / "jobs/big.job.yaml")
+        << "name: big\nmodel:\n  mesh: big.vtk\n  load_case:\n"
+           "    material: {youngs_modulus_mpa: 3500, poisson_ratio: 0.36}\n"
+           "    supports: [left]\n    loads:\n      - {region: right, force_n: [1000, 0, 0]}\n"
+           "regions:\n  left: {box: {min: [-0.1, -1, -1], max: [0.1, 21, 11]}}\n"
+           "  right: {box: {min: [99.9, -1, -1], max: [100.1, 21, 11]}}\n"
+           "placement:\n  position_mm: [150, 150]\n";
+    start_service(write_config());
+    const pid_t pid = service_->pid();
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    long vm_kb = 0;
+    for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmSize:", 0) == 0) vm_kb = std::stol(line.substr(7));
+    ASSERT_GT(vm_kb, 0);
+    const rlimit cap{.rlim_cur = static_cast<rlim_t>(vm_kb + 64 * 1024) * 1024,
+                     .rlim_max = static_cast<rlim_t>(vm_kb + 64 * 1024) * 1024};
+    ASSERT_EQ(::prlimit(pid, RLIMIT_AS, &cap, nullptr), 0);
+    auto c = client();
+    const std::int64_t big =
+        c.call("job.submit", submit_params(dir_ / "jobs/big.job.yaml", "big.vtk", false), 30s)
+            .value("id", std::int64_t{0});
+    const json failed = wait_for_state(c, big, "failed", 120s);
+    ASSERT_EQ(failed.value("state", ""), "failed") << failed.dump(2) << service_->log();
+    // Where it ran out decides the words: the factorisation (CHOLMOD's own allocation) or any
+    // other step (std::bad_alloc).
+    EXPECT_THAT(failed.value("reason", ""), HasSubstr("out of memory"));
+    std::printf("failed: %s\n", failed.value("reason", "").c_str());
+    const std::int64_t bar = submit_bar(c, false);
+    EXPECT_EQ(wait_for_state(c, bar, "planned", 120s).value("state", ""), "planned") << service_->log();
+    EXPECT_TRUE(service_->running());
+#endif
 }
