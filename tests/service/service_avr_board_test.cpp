@@ -31,24 +31,6 @@ const std::string firmware = fibrecell::test::binary_path("tests/firmware/gt2560
 // What the board may hold of the fibre feed when it resets: lead_s (0.3 s) of path and a piece.
 constexpr std::chrono::duration<double> slip_window{1.5};
 
-// When the service logged the first line containing `needle` (its log's local time stamps,
-// "2026-12-06T06:29:16.881 error ...").
-std::optional<std::chrono::system_clock::time_point> logged_at(const std::string& log,
-                                                               const std::string& needle) {
-    std::istringstream lines(log);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.find(needle) == std::string::npos || line.size() < 23) continue;
-        std::tm tm{};
-        std::istringstream stamp(line.substr(0, 19));
-        stamp >> std::get_time(&tm, "%Y-%m-%dT%H:%M:%S");
-        if (stamp.fail()) continue;
-        tm.tm_isdst = -1;
-        return std::chrono::system_clock::from_time_t(std::mktime(&tm)) +
-               std::chrono::milliseconds(std::stoi(line.substr(20, 3)));
-    }
-    return std::nullopt;
-}
-
 class AvrBoardPrint : public ServiceTest {
   protected:
     void SetUp() override {

@@ -26,6 +26,10 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
+#include <optional>
+#include <iomanip>
+#include <ctime>
 #include <string>
 
 namespace fibrecell::test {
@@ -64,6 +68,24 @@ inline int free_tcp_port() {
     ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
     ::close(fd);
     return ntohs(a.sin_port);
+}
+
+// When the service logged the first line containing `needle` (its log's local time stamps,
+// "2026-12-06T06:29:16.881 error ...").
+inline std::optional<std::chrono::system_clock::time_point> logged_at(const std::string& log,
+                                                                      const std::string& needle) {
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.find(needle) == std::string::npos || line.size() < 23) continue;
+        std::tm tm{};
+        std::istringstream stamp(line.substr(0, 19));
+        stamp >> std::get_time(&tm, "%Y-%m-%dT%H:%M:%S");
+        if (stamp.fail()) continue;
+        tm.tm_isdst = -1;
+        return std::chrono::system_clock::from_time_t(std::mktime(&tm)) +
+               std::chrono::milliseconds(std::stoi(line.substr(20, 3)));
+    }
+    return std::nullopt;
 }
 
 class ServiceTest : public ::testing::Test {
