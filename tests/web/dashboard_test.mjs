@@ -1,10 +1,11 @@
 // The dashboard in a real browser (Debian's Chromium, headless, driven by puppeteer-core) against
-// fibrecelld on a simulated cell: a wrong token is refused; log in, submit the tensile bar, watch
-// it plan, start it, see progress and temperatures move, pause and resume, see it complete with
+// fibrecelld on a simulated cell: a wrong token is refused; log in, submit a job (the bundled strip:
+// its YAML and mesh, as `fibrecell submit` sends them), watch it plan, start it, see progress and temperatures move, pause and resume, see it complete with
 // its result; a second browser (its own login) sees the same job live. Screenshots of each page go
 // to --out. Exit 0 pass, 1 fail, 77 skip (no Chromium or puppeteer-core).
 //
-//   node dashboard_test.mjs --fibrecelld BIN --web-root DIR --example DIR --out DIR
+//   node dashboard_test.mjs --fibrecelld BIN --web-root DIR --job FILE --mesh FILE --out DIR
+//                           [--time-scale N]
 import { spawn } from "node:child_process";
 import { existsSync, mkdtempSync, mkdirSync, writeFileSync, readFileSync, rmSync } from "node:fs";
 import { createRequire } from "node:module";
@@ -15,8 +16,10 @@ const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, a, i, all) 
   a.startsWith("--") ? [...pairs, [a.slice(2), all[i + 1]]] : pairs, []));
 const chromium = process.env.CHROMIUM || "/usr/bin/chromium";
 const token = "dashboard-test-token-0123456789";
-const timeScale = 50;  // the tensile bar's 48 min of robot time in about a minute (at 100 the simulated
-                       // controller lost the heartbeat on a loaded machine)
+// The strip's 3 min of robot time in about 20 s at 10x: long enough to see progress move, visit the
+// cell page and pause while it prints (the tensile bar at 50x took 80 s of the suite's time; at
+// 100x the simulated controller lost the heartbeat on a loaded machine).
+const timeScale = Number(args["time-scale"] || 10);
 
 function skip(why) {
   console.log(`SKIP: ${why}`);
@@ -130,13 +133,13 @@ async function main() {
   await page.waitForFunction(() => document.querySelector("#link").textContent === "connected");
   step("logged in; the WebSocket is connected");
 
-  // Submit the tensile bar as `fibrecell submit` would: its YAML and its mesh.
+  // Submit the job as `fibrecell submit` would: its YAML and its mesh.
   await page.goto(base + "#/jobs");
   await page.waitForSelector("#submit-form");
   const yaml = await page.$("#submit-yaml");
-  await yaml.uploadFile(join(args.example, "tensile-bar.job.yaml"));
+  await yaml.uploadFile(resolve(args.job));
   const files = await page.$("#submit-files");
-  await files.uploadFile(join(args.example, "tensile-bar.msh"));
+  await files.uploadFile(resolve(args.mesh));
   await page.click("#submit-form button[type=submit]");
   await page.waitForFunction(() => /job \d+ .* submitted/.test(document.querySelector("#submit-message").textContent));
   const id = Number((await page.$eval("#submit-message", (e) => e.textContent)).match(/job (\d+)/)[1]);

@@ -174,14 +174,16 @@ export async function render(main, { rpc }, arg) {
               s.result, s.viewer);
   s.view3d = new ToolpathView(s.view3dBox);
 
+  // Subscribed before the job is read: a change between the two (a small job plans in a tenth of
+  // a second) is then in what job.get answers, or in an event after it, never in neither.
   try {
+    await rpc.subscribe([String(id)]);
     s.job = await rpc.call("job.get", { job: id });
   } catch (e) {
     main.replaceChildren(el("p", { class: "error" }, errorText(e)));
     return;
   }
   redraw();
-  await rpc.subscribe([String(id)]);
   s.unsub.push(rpc.on("notify.job_state", async (job) => {
     if (job.id !== id || s !== state) return;
     const wasPlanning = s.job.state === "planning" || s.job.state === "failed";
