@@ -49,7 +49,8 @@ static void heater_pin(uint8_t h, bool on) {
 #define PID_KI 0.51f                  /* per second */
 #define PID_KD 74.50f                 /* seconds */
 #define PID_FUNCTIONAL_RANGE 10
-#define SAMPLE_MS 164                 /* Marlin 1.1.9's PID_dT on this board */
+/* About Marlin 1.1.9's PID_dT: 16 x 10 ADC samples at 976.6 Hz. */
+#define SAMPLE_MS 164
 #define PID_DT (SAMPLE_MS / 1000.0f)
 static float i_state[HOTENDS], d_term[HOTENDS], last_c[HOTENDS];
 static bool pid_reset[HOTENDS];
