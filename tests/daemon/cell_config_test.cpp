@@ -98,10 +98,19 @@ TEST(CellConfig, AnExternalBoardIsPrintedThroughInRealTime) {
 
 TEST(CellConfig, TheBoardSimulatorsHeatersComeFromTheSimulationSection) {
     const auto c = load_text("simulation: {heater_power_w: 30, heater_loss_w_per_k: 0.1, "
-                             "heat_capacity_j_per_k: 6, ambient_c: 20}\n");
+                             "heater_fan_loss_w_per_k: 0.07, heat_capacity_j_per_k: 6, ambient_c: 20}\n");
     EXPECT_DOUBLE_EQ(c.simulation.heater_power_w, 30);
     EXPECT_DOUBLE_EQ(c.simulation.heater_loss_w_per_k, 0.1);
+    EXPECT_DOUBLE_EQ(c.simulation.heater_fan_loss_w_per_k, 0.07);
     EXPECT_DOUBLE_EQ(c.simulation.heat_capacity_j_per_k, 6);
     EXPECT_DOUBLE_EQ(c.simulation.ambient_c, 20);
     EXPECT_THROW(load_text("simulation: {heat_capacity_j_per_k: 0}\n"), config::ConfigError);
+    EXPECT_THROW(load_text("simulation: {heater_fan_loss_w_per_k: -1}\n"), config::ConfigError);
+    // The defaults: a real 40 W hotend (docs/board-simulator.md, "The hotend model").
+    const auto d = load_text("");
+    EXPECT_DOUBLE_EQ(d.simulation.heater_loss_w_per_k, 0.05);
+    EXPECT_DOUBLE_EQ(d.simulation.heater_fan_loss_w_per_k, 0.04);
+    EXPECT_DOUBLE_EQ(d.simulation.heat_capacity_j_per_k, 10);
+    EXPECT_EQ(d.part_limits.max_tets, 300'000);
+    EXPECT_THROW(load_text("part_limits: {max_tets: 0}\n"), config::ConfigError);
 }
