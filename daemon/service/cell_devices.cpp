@@ -112,6 +112,31 @@ void CellDevices::connect(std::chrono::milliseconds timeout) {
         throw DeviceError("robot I/O: not up within " + std::to_string(timeout.count()) + " ms (" +
                           (s.fault_reason.empty() ? s.last_error : s.fault_reason) + ")");
     }
+    end_orphan_run(timeout);
+}
+
+// A fibrecelld that died mid-print and was started again within FcMain's heartbeat timeout
+// (systemd restarts it in 100 ms) finds the robot still running the old run: the heartbeat came
+// back before FcMain missed it. Nobody feeds the board for that run, so the robot would lay the
+// rest of the path dry and stop only at the next barrier. It is aborted at once: the robot stops
+// where it is, and the job's resume re-enters from its journal, as after a hold. A held run
+// (doFcRunning low) is left for the resume to end.
+void CellDevices::end_orphan_run(std::chrono::milliseconds timeout) {
+    {
+        std::lock_guard lock(mu_);
+        if (print_) return;
+    }
+    if (!robot_io_->snapshot().running) return;
+    spdlog::warn("cell.orphan_run the robot program runs a print this service did not start "
+                 "(a restart before FcMain's heartbeat timeout): aborted");
+    robot_io_->set_abort(true);
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (robot_io_->snapshot().running && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (robot_io_->snapshot().running)
+        spdlog::error("cell.orphan_run the robot program did not end its run on the abort request "
+                      "within {} ms (a start aborts it again)", timeout.count());
+    robot_io_->set_abort(false);
 }
 
 void CellDevices::disconnect() {

@@ -48,7 +48,8 @@ class CellDevices {
 
     // Activates the board link and starts the robot I/O link (which reconnects by itself);
     // waits up to `timeout` for both. Throws DeviceError naming the device and why. Calling it
-    // again re-activates a board that fell out.
+    // again re-activates a board that fell out. A robot program run found still going with no
+    // print of this service's is aborted (end_orphan_run).
     void connect(std::chrono::milliseconds timeout);
     // Disconnects both links (the service is stopping).
     void disconnect();
@@ -76,6 +77,8 @@ class CellDevices {
     nlohmann::json status() const;
 
   private:
+    void end_orphan_run(std::chrono::milliseconds timeout);
+
     void temperature(const drivers::marlin::TemperatureReport& report);
 
     CellConfig cell_;

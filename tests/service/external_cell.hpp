@@ -114,6 +114,8 @@ class ExternalCell {
 
     const fs::path& board_log() const { return board_log_; }
     const fs::path& trajectory() const { return trajectory_; }
+    // What the simulated IRC5 printed (its task's TPWrite lines among them).
+    std::string robot_log() const { return robot_->log(); }
 
   private:
     fs::path board_log_, trajectory_, tty_;
