@@ -5,17 +5,17 @@
 # directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
 # them again); a test missing here only starts later.
 set(fibrecell_slow_tests
-    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=100"
-    "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=30"
+    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=22"
+    "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=15"
     "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=22"
-    "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=25"
+    "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=19"
     "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=18"
     "AvrBoardPrint.AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable=18"
     "ServiceTest.AStopDoesNotWaitForPlanningPastItsGraceAndTheJobPlansAtTheNextStart=11"
-    "ExampleGuarantees.Loop=18"
+    "ExampleGuarantees.Loop=12"
     "ServiceTest.TheJobsSettingsReachTheBoardAndTheRobot=10"
-    "ReferenceGuarantees.YogaNew=10"
-    "ReferenceGuarantees.Bunnyhead=9"
+    "ReferenceGuarantees.YogaNew=8"
+    "ReferenceGuarantees.Bunnyhead=10"
     "ServiceTest.APlanForACellThatChangedIsRefusedUntilItIsReplanned=9"
     "ServiceTest.AJobIsPlannedAndPrintedWhileTwoClientsWatchIt=9"
     "ServiceTest.APrintThatFellShortOfItsPlanEndsCompletedWithWarnings=9"

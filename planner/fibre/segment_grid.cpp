@@ -4,14 +4,6 @@
 
 namespace fibrecell::planner {
 
-double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                              const Eigen::Vector2d& b) {
-    const Eigen::Vector2d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).norm();
-}
-
 void SegmentGrid::insert(const TaggedSegment& s) {
     const auto [x0, y0] = cell_of(s.a.cwiseMin(s.b));
     const auto [x1, y1] = cell_of(s.a.cwiseMax(s.b));

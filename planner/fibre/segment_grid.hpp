@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
@@ -16,9 +17,15 @@ struct TaggedSegment {
     int tag = 0;           // what the segment belongs to (a curve level, a path)
 };
 
-// Distance [mm] from p to the segment ab.
-double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                              const Eigen::Vector2d& b);
+// Distance [mm] from p to the segment ab. Inline: the planner's nearness queries call it for
+// every segment they visit.
+inline double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                     const Eigen::Vector2d& b) {
+    const Eigen::Vector2d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * ab - p).norm();
+}
 
 class SegmentGrid {
   public:

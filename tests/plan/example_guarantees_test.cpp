@@ -100,19 +100,37 @@ Spacing measure_spacing(const std::vector<Toolpath>& paths, double w) {
     return out;
 }
 
-// Winding number of the outline's loops around p: 1 inside the region, 0 outside.
-int winding(const LayerOutline& outline, const Eigen::Vector2d& p) {
-    int w = 0;
-    for (const auto& loop : outline.loops)
-        for (std::size_t i = 0; i < loop.size(); ++i) {
-            const Eigen::Vector2d a = loop[i], b = loop[(i + 1) % loop.size()];
+// Winding number of the outline's loops around a point: 1 inside the region, 0 outside. Each
+// edge is filed under the horizontal bands (`band` mm high) its y-range spans, so that a point
+// counts the crossings of its band's edges only, not of the whole outline.
+class OutlineWinding {
+  public:
+    OutlineWinding(const LayerOutline& outline, double band) : band_(band) {
+        for (const auto& loop : outline.loops)
+            for (std::size_t i = 0; i < loop.size(); ++i) {
+                const Eigen::Vector2d a = loop[i], b = loop[(i + 1) % loop.size()];
+                for (long k = at(std::min(a.y(), b.y())); k <= at(std::max(a.y(), b.y())); ++k)
+                    bands_[k].push_back({a, b});
+            }
+    }
+    int operator()(const Eigen::Vector2d& p) const {
+        const auto it = bands_.find(at(p.y()));
+        if (it == bands_.end()) return 0;
+        int w = 0;
+        for (const auto& [a, b] : it->second) {
             const double cross =
                 (b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y());
             if (a.y() <= p.y() && b.y() > p.y() && cross > 0) ++w;
             if (a.y() > p.y() && b.y() <= p.y() && cross < 0) --w;
         }
-    return w;
-}
+        return w;
+    }
+
+  private:
+    long at(double y) const { return std::lround(std::floor(y / band_)); }
+    double band_;
+    std::unordered_map<long, std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> bands_;
+};
 
 // Distances to a layer's outline, through a grid of its segments (exact below `reach` mm).
 class OutlineDistance {
@@ -178,13 +196,14 @@ Laid check_guarantees(const JobSpec& job, const FieldStageResult& field) {
         if (layer.head != Head::ccf) continue;
         if (!layer.paths.empty()) ++fibre_layers;
         const OutlineDistance to_outline(r.outlines[i], 2 * w);
+        const OutlineWinding winding(r.outlines[i], 2 * w);
         double layer_length = 0;
         for (const Toolpath& p : layer.paths) {
             layer_length += path_length(p);
             EXPECT_GE(path_length(p), job.planner.cutter_distance_mm) << "layer " << i;
             for (const auto& q : sample(p, w / 4)) {
                 const double d = to_outline(q);
-                if (winding(r.outlines[i], q) != 1) ++outside;
+                if (winding(q) != 1) ++outside;
                 nearest_edge = std::min(nearest_edge, d);
                 EXPECT_GE(d, w / 2 - 1e-6) << "layer " << i << " point " << q.transpose()
                                            << " role " << static_cast<int>(p.role) << " closed "

@@ -17,7 +17,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double board_time_scale = 20;
+constexpr double board_time_scale = 50;
 
 // The commands of the board's --log (time, tab, command), in order.
 std::vector<std::string> board_commands(const fs::path& log) {

@@ -13,7 +13,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr double heater_time_scale = 20;
+constexpr double heater_time_scale = 50;
 
 class HeaterTest : public ServiceTest {
   protected:

@@ -16,10 +16,10 @@ const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, a, i, all) 
   a.startsWith("--") ? [...pairs, [a.slice(2), all[i + 1]]] : pairs, []));
 const chromium = process.env.CHROMIUM || "/usr/bin/chromium";
 const token = "dashboard-test-token-0123456789";
-// The strip's 3 min of robot time in about 20 s at 10x: long enough to see progress move, visit the
-// cell page and pause while it prints (the tensile bar at 50x took 80 s of the suite's time; at
-// 100x the simulated controller lost the heartbeat on a loaded machine).
-const timeScale = Number(args["time-scale"] || 10);
+// The strip's 3 min of robot time in about 9 s at 20x: long enough to see progress move, visit the
+// cell page and pause while it prints (the tensile bar at 50x took 80 s of the suite's time, the
+// strip at 10x 27 s; at 100x the simulated controller lost the heartbeat on a loaded machine).
+const timeScale = Number(args["time-scale"] || 20);
 
 function skip(why) {
   console.log(`SKIP: ${why}`);
