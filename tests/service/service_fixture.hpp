@@ -97,8 +97,11 @@ class ServiceTest : public ::testing::Test {
         for (auto& s : stress) s(0, 0) = 30.0;
         fibrecell::test::write_vtk_file(dir_ / "jobs/bar.vtk", mesh, {.stress = &stress});
         fibrecell::test::write_vtk_file(dir_ / "jobs/bare.vtk", mesh, {});
+        // PLA at 24 mm/s (the default 12 is for the fibre cell's first layers): half the
+        // robot time of the matrix, which is most of each print of the service tests.
         std::ofstream(dir_ / "jobs/bar.job.yaml")
-            << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n";
+            << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n"
+               "process:\n  pla: {speed_mm_s: 24}\n";
         std::ofstream(dir_ / "jobs/broken.job.yaml")
             << "name: broken\nmodel:\n  mesh: bare.vtk\nplacement:\n  position_mm: [150, 150]\n";
     }
