@@ -26,6 +26,10 @@ struct FibreLayerOptions {
     // relative to the piece's own range, so without this a piece with only the rule-3 marker
     // (sigma_e = 1e-5) would be filled like a loaded one.
     double min_tension = 1e-4;
+    // The field-dense strategy: stripes along the field every `stripe_period_mm` instead of the
+    // scalar field's isocurves; the connection and the W rule are the same.
+    bool stripes = false;
+    double stripe_period_mm = 0;  // 0: the default, 1.2 W (fibre_layer.cpp)
 };
 
 struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
@@ -43,6 +47,7 @@ struct FibreLayer {
     std::size_t spacing_cuts = 0;    // paths the final laying had to cut to keep W
     std::size_t rings_joined = 0;    // rings shorter than the cutter laid as part of a stress path
     std::size_t rings_extended = 0;  // arcs too short to cut run on along their loop instead
+    std::size_t singular_triangles = 0;  // field-dense: where the stripes branch (none cross)
     // Where they are, for the report per boundary: each link's meeting point (the middle of the
     // two ends it joins) and the first point of each joined ring.
     std::vector<Eigen::Vector2d> join_points, joined_ring_points;

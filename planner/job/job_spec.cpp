@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace fibrecell::planner {
 namespace fs = std::filesystem;
@@ -152,8 +153,7 @@ FibreBudget read_fibre_budget(Section& s) {
 
 PlannerSpec read_planner(Section s) {
     PlannerSpec p;
-    const std::string strategy = s.choice("strategy", "field", {"field", "contour-zigzag"});
-    p.strategy = strategy == "field" ? Strategy::field : Strategy::contour_zigzag;
+    p.strategy = strategy_named(s.choice("strategy", "field", {"field", "contour-zigzag", "field-dense"}));
     p.mu = s.number("mu", p.mu, 0, kBig, true);
     p.eta = s.number("eta", p.eta, -1, 1);
     const std::string rule = s.choice("incompatibility_rule", "all", {"all", "majority", "any"});
@@ -237,7 +237,20 @@ bool LayerScheduleSpec::has_ccf_after(int pla_layer) const {
 }
 
 std::string_view to_string(Strategy s) {
-    return s == Strategy::field ? "field" : "contour-zigzag";
+    switch (s) {
+        case Strategy::field: return "field";
+        case Strategy::contour_zigzag: return "contour-zigzag";
+        case Strategy::field_dense: return "field-dense";
+    }
+    return "field";
+}
+
+Strategy strategy_named(std::string_view name) {
+    if (name == "contour-zigzag") return Strategy::contour_zigzag;
+    if (name == "field-dense") return Strategy::field_dense;
+    if (name == "field") return Strategy::field;
+    throw std::invalid_argument("no strategy '" + std::string(name) +
+                                "' (field, contour-zigzag or field-dense)");
 }
 
 const LoadCaseSpec* JobSpec::analysis_load_case() const {

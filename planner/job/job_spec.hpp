@@ -51,8 +51,12 @@ struct LayerScheduleSpec {
     bool has_ccf_after(int pla_layer) const;  // pla_layer is 1-based
 };
 
-enum class Strategy { field, contour_zigzag };
+// field: the paper's isocurves of one scalar field; contour_zigzag: the load-blind baseline;
+// field_dense: stripes along the stress at the fibre spacing (planner/fibre/stripe_pattern.hpp).
+enum class Strategy { field, contour_zigzag, field_dense };
 std::string_view to_string(Strategy s);
+// The strategy of a job file's or the CLI's name; throws std::invalid_argument for another.
+Strategy strategy_named(std::string_view name);
 
 // How much fibre a CCF layer gets (planner.fibre_budget): what the strategy lays by itself
 // (none), what the contour-zigzag baseline lays on the same layer (baseline: the paper's

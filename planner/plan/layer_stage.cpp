@@ -82,7 +82,8 @@ double budget_target_mm(const FibreBudget& budget, const LayerOutline& outline, 
 std::vector<SelectedFaces> boundary_fibre_selection(const JobSpec& job, const VolumeModel& model,
                                                     const TetMesh& placed) {
     std::vector<SelectedFaces> out;
-    if (job.boundary_fibre_regions.empty() || job.planner.strategy != Strategy::field) return out;
+    if (job.boundary_fibre_regions.empty() || job.planner.strategy == Strategy::contour_zigzag)
+        return out;
     const std::vector<BoundaryTriangle> boundary = boundary_triangles(model.mesh);
     for (const std::string& name : job.boundary_fibre_regions) {
         std::vector<BoundaryTriangle> t = select_triangles(model, boundary, *job.find_region(name));
@@ -141,6 +142,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     fibre.spacing_mm = job.planner.fibre_spacing_mm;
     fibre.crowded_fraction = job.planner.crowded_fraction;
     fibre.cutter_distance_mm = options.cutter_distance_mm;
+    fibre.stripes = job.planner.strategy == Strategy::field_dense;
     const std::vector<SelectedFaces> boundary_fibre_faces =
         boundary_fibre_selection(job, field.model, placed);
 
@@ -183,11 +185,17 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             for (const SelectedFaces& faces : boundary_fibre_faces)
                 region_edges.push_back(selected_outline_edges(out.sections[i], faces));
             const auto edges = edges_of_any(region_edges);
+            // The field strategy's knob is its density (field_density); the stripes' is the
+            // fraction of W/period: below 1 they lie further apart.
             const auto fibre_at = [&](double knob) {
-                const FieldDensity d = field_density(knob, job.planner.p);
                 FibreLayerOptions o = fibre;
-                o.field.p = d.p;
-                o.density_scale = d.density_scale;
+                if (fibre.stripes) {
+                    if (knob < 1) o.stripe_period_mm = fibre.spacing_mm / knob;
+                } else {
+                    const FieldDensity d = field_density(knob, job.planner.p);
+                    o.field.p = d.p;
+                    o.density_scale = d.density_scale;
+                }
                 return plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
                                         field.v_defined, edges, o);
             };
@@ -199,8 +207,9 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 const auto length = [](const FibreLayer& l) { return fibre_length(l.paths); };
                 // The contrast first (the fibre need not rise steadily with the knob past 2:
                 // curves cut where they crowd can lose more to the cutter than they add).
-                r = fit_budget(fibre_at, length, target, 1.0 / 16, 2.0, 1.0, *w.budget);
-                if (!w.budget->met() && w.budget->laid_mm < target) {
+                r = fit_budget(fibre_at, length, target, 1.0 / 16, fibre.stripes ? 1.0 : 2.0,
+                               1.0, *w.budget);
+                if (!fibre.stripes && !w.budget->met() && w.budget->laid_mm < target) {
                     BudgetFit more;
                     FibreLayer denser =
                         fit_budget(fibre_at, length, target, 2.0, field_knob_max, 2.0, more);
@@ -212,7 +221,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                         w.budget->tries = more.tries;
                     }
                 }
-                w.budget_p = field_density(w.budget->knob, job.planner.p).p;
+                if (!fibre.stripes) w.budget_p = field_density(w.budget->knob, job.planner.p).p;
             } else {
                 r = fibre_at(1.0);
             }

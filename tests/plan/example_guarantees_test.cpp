@@ -172,7 +172,7 @@ struct Laid {
 // Where the strategy puts boundary rings: the field strategy one at 1.5W, contour-zigzag its
 // rings at W/2 + iW.
 double ring_target(Strategy strategy, double d, double w) {
-    if (strategy == Strategy::field) return 1.5 * w;
+    if (strategy != Strategy::contour_zigzag) return 1.5 * w;
     return w / 2 + std::max(0.0, std::round((d - w / 2) / w)) * w;
 }
 
@@ -184,7 +184,7 @@ double ring_target(Strategy strategy, double d, double w) {
 Laid check_guarantees(const JobSpec& job, const FieldStageResult& field) {
     const LayerStageResult r = run_layer_stage(job, field);
     const double w = job.planner.fibre_spacing_mm;
-    const char* strategy = job.planner.strategy == Strategy::field ? "field" : "contour-zigzag";
+    const std::string strategy(to_string(job.planner.strategy));
     Laid laid{r.stats, {}};
     int fibre_layers = 0;
     Spacing worst;
@@ -313,6 +313,19 @@ TEST(ExampleGuarantees, TensileBar) {
     EXPECT_GT(s.quality.density_correlation(), 0.8);
     // The fibre runs the bar's length and converges into its gauge: 64% of the baseline.
     EXPECT_GE(min_layer_ratio(both), 0.6);
+}
+
+// The field-dense strategy on the bar, against the field strategy on the same field stage.
+TEST(ExampleGuarantees, TensileBarFieldDense) {
+    JobSpec job = load_job_file(fibrecell::test::source_path("examples/tensile-bar/tensile-bar.job.yaml"));
+    const FieldStageResult field = fibrecell::test::field_stage_of(job);
+    const Laid sparse = check_guarantees(job, field);
+    job.planner.strategy = Strategy::field_dense;
+    const Laid dense = check_guarantees(job, field);
+    EXPECT_EQ(dense.stats.ccf_layers, 5);
+    // More fibre than the field strategy's, still along the bar.
+    EXPECT_GT(dense.stats.fibre_length_mm, 1.1 * sparse.stats.fibre_length_mm);
+    EXPECT_GT(dense.stats.quality.alignment(), 0.98);
 }
 
 TEST(ExampleGuarantees, Loop) {

@@ -152,9 +152,7 @@ int run_plan(const PlanArgs& args) {
         }
         request.last_stage =
             args.stage == "layers" ? jobs::PlanStage::layers : jobs::PlanStage::field;
-        if (!args.strategy.empty())
-            request.strategy = args.strategy == "field" ? planner::Strategy::field
-                                                        : planner::Strategy::contour_zigzag;
+        if (!args.strategy.empty()) request.strategy = planner::strategy_named(args.strategy);
         if (!args.cell.empty()) request.cell = daemon::load_cell_config(args.cell);
         jobs::ThreadPool pool({.threads = args.threads});
         request.executor = &pool;
@@ -196,7 +194,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
                     "report and preview (p=0,0.5,1,2; also sigma_cap_percentile, "
                     "crowded_fraction)");
     cmd->add_option("--strategy", args->strategy, "override the job's fibre strategy")
-        ->check(CLI::IsMember({"field", "contour-zigzag"}));
+        ->check(CLI::IsMember({"field", "contour-zigzag", "field-dense"}));
     cmd->callback([args, &exit_code] { exit_code = run_plan(*args); });
 }
 
