@@ -70,15 +70,21 @@ void connect_piece(const FibreRegion& region, std::vector<Polyline> curves,
         paths.push_back({PathRole::fibre_boundary, r.closed, std::move(r.points)});
 }
 
+// A per-triangle value of the layer, on the triangles of one of its pieces.
+std::vector<Eigen::Vector2d> on_piece(const LayerPiece& piece,
+                                      const std::vector<Eigen::Vector2d>& of_layer) {
+    std::vector<Eigen::Vector2d> out;
+    out.reserve(piece.face_of_layer.size());
+    for (int f : piece.face_of_layer) out.push_back(of_layer[f]);
+    return out;
+}
+
 // The field strategy's curves on one piece: isocurves of the scalar field fitted to u_f, as
 // many as W allows (Section 4.3).
 std::vector<Polyline> piece_isocurves(const LayerPiece& piece, FibreLayer& out,
                                       const FibreLayerOptions& options) {
     Stopwatch clock;
-    std::vector<Eigen::Vector2d> u;
-    u.reserve(piece.face_of_layer.size());
-    for (int f : piece.face_of_layer) u.push_back(out.field.u_f[f]);
-    const std::vector<double> s = scalar_field(piece.mesh, u);
+    const std::vector<double> s = scalar_field(piece.mesh, on_piece(piece, out.field.u_f));
     out.timings.scalar_field += clock.lap();
     AdaptiveIsocurves curves = adaptive_isocurves(piece.mesh, s,
                                                   {.spacing_mm = options.spacing_mm,
@@ -105,9 +111,7 @@ constexpr double stripe_period_over_w = 1.2;
 std::vector<Polyline> piece_stripes(const LayerPiece& piece, FibreLayer& out,
                                     const FibreLayerOptions& options) {
     Stopwatch clock;
-    std::vector<Eigen::Vector2d> along;
-    along.reserve(piece.face_of_layer.size());
-    for (int f : piece.face_of_layer) along.push_back(out.field.v_f[f]);
+    const std::vector<Eigen::Vector2d> along = on_piece(piece, out.field.v_f);
     const double period =
         options.stripe_period_mm > 0 ? options.stripe_period_mm
                                      : stripe_period_over_w * options.spacing_mm;
