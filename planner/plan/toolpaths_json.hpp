@@ -14,7 +14,7 @@ namespace fibrecell::planner {
 inline constexpr std::string_view toolpaths_format = "fibrecell.toolpaths/1";
 
 struct ToolpathsFile {
-    std::string strategy;  // "field" or "contour-zigzag"
+    std::string strategy;  // "field", "contour-zigzag" or "field-dense"
     std::vector<ToolpathLayer> layers;
 };
 
