@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -20,6 +21,26 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double two_pi = 2 * std::numbers::pi;
 
+double triangle_area(const LayerMesh& mesh, const std::array<int, 3>& t) {
+    const Eigen::Vector2d e1 = mesh.vertices[t[1]] - mesh.vertices[t[0]];
+    const Eigen::Vector2d e2 = mesh.vertices[t[2]] - mesh.vertices[t[0]];
+    return 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+}
+
+// Vertex v's direction and phase read alongside vertex `ref`'s: where the line field's sign
+// flips between them, the direction turned round and the phase conjugated.
+struct Aligned {
+    Eigen::Vector2d across;
+    Complex psi;
+    bool flipped;
+};
+Aligned aligned(const std::vector<Eigen::Vector2d>& across, const std::vector<Complex>& psi,
+                int ref, int v) {
+    const bool flip = across[v].dot(across[ref]) < 0;
+    return {flip ? Eigen::Vector2d(-across[v]) : across[v],
+            psi.empty() ? Complex{} : flip ? std::conj(psi[v]) : psi[v], flip};
+}
+
 // Per vertex: the direction across the stripes (the phase's gradient), a unit vector whose sign
 // means nothing. The faces' directions are averaged as a line field (angles doubled).
 std::vector<Eigen::Vector2d> across_directions(const LayerMesh& mesh,
@@ -29,12 +50,9 @@ std::vector<Eigen::Vector2d> across_directions(const LayerMesh& mesh,
         const Eigen::Vector2d d = direction_f[f];
         const double n = d.norm();
         if (!(n > 0)) continue;
-        const auto& t = mesh.triangles[f];
-        const Eigen::Vector2d e1 = mesh.vertices[t[1]] - mesh.vertices[t[0]];
-        const Eigen::Vector2d e2 = mesh.vertices[t[2]] - mesh.vertices[t[0]];
-        const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
         const Complex z(d.x() / n, d.y() / n);
-        for (int v : t) doubled[v] += area * z * z;
+        const double area = triangle_area(mesh, mesh.triangles[f]);
+        for (int v : mesh.triangles[f]) doubled[v] += area * z * z;
     }
     std::vector<Eigen::Vector2d> across(mesh.vertices.size(), Eigen::Vector2d(1, 0));
     for (std::size_t v = 0; v < doubled.size(); ++v) {
@@ -103,9 +121,7 @@ std::vector<Complex> solve_phase(const LayerMesh& mesh, const Edges& edges,
     a.reserve(edges.list.size() * 16);
     Eigen::VectorXd mass = Eigen::VectorXd::Zero(2 * n);
     for (const auto& t : mesh.triangles) {
-        const Eigen::Vector2d e1 = mesh.vertices[t[1]] - mesh.vertices[t[0]];
-        const Eigen::Vector2d e2 = mesh.vertices[t[2]] - mesh.vertices[t[0]];
-        const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6;
+        const double third = triangle_area(mesh, t) / 3;
         for (int v : t) mass[2 * v] += third, mass[2 * v + 1] += third;
     }
     const double mean_mass = std::max(mass.sum() / std::max(1, 2 * n), 1e-300);
@@ -113,9 +129,9 @@ std::vector<Complex> solve_phase(const LayerMesh& mesh, const Edges& edges,
         // A negative cotangent weight (an obtuse sliver of the slice) would make the energy
         // indefinite; such an edge still ties its ends a little.
         const double w = std::max(e.weight, 1e-3);
-        const bool flip = across[e.a].dot(across[e.b]) < 0;
-        const Eigen::Vector2d xb = flip ? Eigen::Vector2d(-across[e.b]) : across[e.b];
-        const Eigen::Matrix2d m = transport(edge_omega(mesh, e.a, e.b, across[e.a], xb, frequency), flip);
+        const Aligned b = aligned(across, {}, e.a, e.b);
+        const Eigen::Matrix2d m =
+            transport(edge_omega(mesh, e.a, e.b, across[e.a], b.across, frequency), b.flipped);
         for (int r = 0; r < 2; ++r) {
             a.emplace_back(2 * e.a + r, 2 * e.a + r, w);
             a.emplace_back(2 * e.b + r, 2 * e.b + r, w);
@@ -151,7 +167,7 @@ std::vector<Complex> solve_phase(const LayerMesh& mesh, const Edges& edges,
 }
 
 // The phase difference along a -> b: the wanted change plus the solution's own deviation from it
-// (in (-pi, pi]). `xa`, `xb` aligned to each other; `flip_b`: psi_b is read conjugated.
+// (in (-pi, pi]). `xa`, `xb` and `psi_a`, `psi_b` read aligned (see Aligned).
 double phase_step(const LayerMesh& mesh, int a, int b, const Eigen::Vector2d& xa,
                   const Eigen::Vector2d& xb, const Complex& psi_a, const Complex& psi_b,
                   double frequency) {
@@ -187,11 +203,10 @@ StripePattern stripe_pattern(const LayerMesh& piece, const std::vector<Eigen::Ve
     std::vector<int> first_id(edges.list.size() + 1, 0);
     for (std::size_t e = 0; e < edges.list.size(); ++e) {
         const Edge& g = edges.list[e];
-        const bool flip = across[g.a].dot(across[g.b]) < 0;
-        const Eigen::Vector2d xb = flip ? Eigen::Vector2d(-across[g.b]) : across[g.b];
+        const Aligned b = aligned(across, psi, g.a, g.b);
         const double alpha_a = std::arg(psi[g.a]);
-        const double alpha_b = alpha_a + phase_step(piece, g.a, g.b, across[g.a], xb, psi[g.a],
-                                                    flip ? std::conj(psi[g.b]) : psi[g.b], frequency);
+        const double alpha_b =
+            alpha_a + phase_step(piece, g.a, g.b, across[g.a], b.across, psi[g.a], b.psi, frequency);
         edge_t[e] = crossings(alpha_a, alpha_b);
         first_id[e + 1] = first_id[e] + static_cast<int>(edge_t[e].size());
     }
@@ -227,9 +242,9 @@ StripePattern stripe_pattern(const LayerMesh& piece, const std::vector<Eigen::Ve
         std::array<Eigen::Vector2d, 3> x;
         std::array<Complex, 3> z;
         for (int k = 0; k < 3; ++k) {
-            const bool flip = across[t[k]].dot(across[t[0]]) < 0;
-            x[k] = flip ? Eigen::Vector2d(-across[t[k]]) : across[t[k]];
-            z[k] = flip ? std::conj(psi[t[k]]) : psi[t[k]];
+            const Aligned c = aligned(across, psi, t[0], t[k]);
+            x[k] = c.across;
+            z[k] = c.psi;
         }
         const auto step = [&](int i, int j) {
             return phase_step(piece, t[i], t[j], x[i], x[j], z[i], z[j], frequency);
