@@ -41,12 +41,17 @@ constexpr Transition transitions[] = {
     {S::printing, A::service_restarted, S::interrupted},
 
     {S::pausing, A::pause_done, S::paused},
+    // A pause asked for as the last move ends: the part is printed, so the job completes.
+    {S::pausing, A::print_done, S::completed},
+    {S::pausing, A::print_short, S::completed_with_warnings},
     {S::pausing, A::faulted, S::paused},
     {S::pausing, A::abort, S::aborted},
     {S::pausing, A::print_failed, S::failed},
     {S::pausing, A::service_restarted, S::interrupted},
 
     {S::paused, A::resume, S::printing},
+    {S::paused, A::print_done, S::completed},  // the pause took hold after the last move (above)
+    {S::paused, A::print_short, S::completed_with_warnings},
     {S::paused, A::abort, S::aborted},
     {S::paused, A::print_failed, S::failed},
     {S::paused, A::service_restarted, S::interrupted},
