@@ -94,6 +94,17 @@ run_demo() {
     return "$outcome"
 }
 
+# The whole suite but the soak test (label soak, tests/print/print_soak_test.cpp, run by hand:
+# ctest -L soak). One slot more than cores: the print through the board simulator (real time,
+# mostly waiting) runs beside the rest instead of taking a core's place (docs/building.md). When a
+# test fails, why it failed comes last, where the tail of a CI log shows it.
+run_suite() {
+    (cd "$test_dir" && ctest --output-on-failure --parallel "$((jobs + 1))" --timeout 300 -LE soak) &&
+        return 0
+    "$root/tools/why-tests-failed.sh" "$test_dir"
+    return 8
+}
+
 release_dir="$root/build/release"
 test_dir="$root/build/test"
 
@@ -117,12 +128,7 @@ case "${1:-demo}" in
         phase "the dashboard's packages" install_web_packages
         phase "the sanitizer build" configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
             -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF
-        cd "$test_dir"
-        # The soak test (label soak, tests/print/print_soak_test.cpp) is run by hand: ctest -L soak.
-        # One slot more than cores: the print through the board simulator (real time, mostly
-        # waiting) runs beside the rest instead of taking a core's place (docs/building.md).
-        phase "the test suite" ctest --output-on-failure --parallel "$((jobs + 1))" --timeout 300 \
-            -LE soak
+        phase "the test suite" run_suite
         ;;
     *)
         echo "usage: tools/setup.sh [demo|test|build]" >&2
