@@ -36,6 +36,7 @@ struct LayerWork {
     double min_spacing = 0;
     FibreLayerTimings timings;
     FibreQualitySums quality;
+    FibreCoverage coverage;
     std::vector<BoundaryFibreStats> boundaries;  // per boundary_fibres region
     std::optional<BudgetFit> budget;             // when planner.fibre_budget applied to the layer
     std::optional<double> budget_p;              // the contrast p the field strategy met it at
@@ -239,9 +240,11 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 w.boundaries.push_back(boundary_fibre_stats(out.sections[i], edges_of_region,
                                                             w.layer.paths, fibre.spacing_mm, joins));
         }
-        if (s.head == Head::ccf)
+        if (s.head == Head::ccf) {
+            w.coverage = fibre_coverage(out.outlines[i], w.layer.paths, fibre.spacing_mm);
             w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
                                       field.v_defined, {.p = job.planner.p});
+        }
         std::lock_guard lock(progress_mutex);
         control.report("layers", static_cast<double>(++finished) / schedule.size());
     };
@@ -301,6 +304,10 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
         st.mean_extraction += w.timings.extraction;
         st.mean_connection += w.timings.connection;
         st.quality += w.quality;
+        if (ccf) {
+            st.layer_coverage.emplace_back(w.layer.index, w.coverage);
+            st.coverage += w.coverage;
+        }
         for (std::size_t b = 0; b < w.boundaries.size(); ++b)
             st.boundaries[b].second += w.boundaries[b];
         out.layers.push_back(std::move(w.layer));

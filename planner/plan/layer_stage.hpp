@@ -7,6 +7,7 @@
 #include "planner/job/job_spec.hpp"
 #include "planner/layers/layer_mesh.hpp"
 #include "planner/plan/boundary_fibre_stats.hpp"
+#include "planner/plan/fibre_coverage.hpp"
 #include "planner/plan/fibre_quality.hpp"
 #include "planner/plan/field_stage.hpp"
 #include "planner/progress.hpp"
@@ -43,6 +44,9 @@ struct LayerStageStats {
     double mean_vector_field = 0, mean_scalar_field = 0, mean_extraction = 0, mean_connection = 0;
     double total_s = 0;        // all per-layer work, wall clock
     FibreQualitySums quality;  // over all CCF layers
+    // Per CCF layer (its index in print order), and over all of them.
+    std::vector<std::pair<int, FibreCoverage>> layer_coverage;
+    FibreCoverage coverage;
     // Per boundary_fibres region, in the job's order (field strategy), over all CCF layers.
     std::vector<std::pair<std::string, BoundaryFibreStats>> boundaries;
 };

@@ -76,7 +76,19 @@ nlohmann::json field_stage_report(const JobSpec& job, const FieldStageResult& r)
     return report;
 }
 
+namespace {
+
+nlohmann::json coverage_json(const FibreCoverage& c) {
+    return {{"coverage", c.coverage()},
+            {"covered", c.covered_fraction()},
+            {"region_mm2", c.region_mm2},
+            {"fibre_m", c.fibre_mm / 1000.0}};
+}
+
+}  // namespace
+
 void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& layers) {
+    using nlohmann::json;
     const LayerStageStats& s = layers.stats;
     report["stage"] = "layers";
     report["layers"] = {{"pla", s.pla_layers}, {"ccf", s.ccf_layers}};
@@ -86,6 +98,14 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
         {"rings_joined", s.fibre_rings_joined},     {"rings_extended", s.fibre_rings_extended},
         {"dropped_short", s.dropped_short},
         {"min_spacing_mm", s.fibre_min_spacing_mm}, {"min_length_mm", s.fibre_min_length_mm}};
+    report["fibre"]["mean_path_mm"] = s.fibre_paths > 0 ? s.fibre_length_mm / s.fibre_paths : 0.0;
+    report["fibre"]["coverage"] = coverage_json(s.coverage);
+    for (const auto& [index, c] : s.layer_coverage) {
+        json layer = coverage_json(c);
+        layer["layer"] = index;
+        layer["paths"] = layers.layers.at(static_cast<std::size_t>(index)).paths.size();
+        report["fibre"]["coverage"]["layers"].push_back(layer);
+    }
     if (s.budget.layers > 0)
         report["fibre"]["budget"] = {{"target_m", s.budget.target_mm / 1000.0},
                                      {"layers", s.budget.layers},

@@ -152,7 +152,8 @@ async function main() {
   await waitForState(page, "h1 .state", ["planned"]);
   await page.waitForSelector("#layer-view svg", long);
   const figures = await page.$eval("#plan-figures", (e) => e.textContent);
-  if (!/fibre/.test(figures) || !/alignment/.test(figures)) fail(`the plan's figures are missing: ${figures}`);
+  if (!/fibre/.test(figures) || !/alignment/.test(figures) || !/fibre coverage\s*[01]\.\d{3}/.test(figures))
+    fail(`the plan's figures are missing: ${figures}`);
   await shot(page, "job-planned");
   step("planned: figures and the layer view are shown");
 

@@ -90,6 +90,18 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         "as too short); PLA %.2f m\n",
         s.fibre_length_mm / 1000.0, s.fibre_paths, s.fibre_min_spacing_mm, s.fibre_min_length_mm,
         s.dropped_short, s.pla_length_mm / 1000.0);
+    if (s.ccf_layers > 0) {
+        // The layer with the least coverage is where a denser strategy has most to add.
+        const auto least = std::min_element(
+            s.layer_coverage.begin(), s.layer_coverage.end(),
+            [](const auto& a, const auto& b) { return a.second.coverage() < b.second.coverage(); });
+        std::printf(
+            "coverage   %.3f (fibre length x W over the fibre region, %.0f mm^2), %.3f of the region "
+            "under a ribbon; least on layer %d: %.3f; mean path %.1f mm\n",
+            s.coverage.coverage(), s.coverage.region_mm2, s.coverage.covered_fraction(),
+            least->first, least->second.coverage(),
+            s.fibre_paths > 0 ? s.fibre_length_mm / s.fibre_paths : 0.0);
+    }
     if (s.budget.layers > 0) {
         std::printf("budget     %.2f m asked: %d of %d CCF layers within 5%% (worst %.1f%%)",
                     s.budget.target_mm / 1000.0, s.budget.layers_met, s.budget.layers,

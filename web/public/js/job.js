@@ -19,7 +19,8 @@ function planFigures(report) {
   return kv([
     ["strategy", report.strategy],
     ["layers", `${(layers.pla || 0) + (layers.ccf || 0)} (${layers.pla || 0} PLA, ${layers.ccf || 0} CCF)`],
-    ["fibre", `${fixed(f.length_m, 2, " m")} in ${f.paths ?? "?"} paths`],
+    ["fibre", `${fixed(f.length_m, 2, " m")} in ${f.paths ?? "?"} paths (mean ${fixed(f.mean_path_mm, 0, " mm")})`],
+    ["fibre coverage", f.coverage ? `${fixed(f.coverage.coverage, 3)} (${fixed(100 * f.coverage.covered, 1, "%")} of the fibre region under a ribbon)` : "–"],
     ["PLA", fixed((report.pla || {}).length_m, 1, " m")],
     ["alignment (weighted |cos|)", fixed(q.alignment_weighted_cos, 3)],
     ["density–stress correlation", fixed(q.density_sigma_p_correlation, 2)],
