@@ -28,8 +28,4 @@ struct FibreCoverage {
 FibreCoverage fibre_coverage(const LayerOutline& outline, const std::vector<Toolpath>& paths,
                              double w);
 
-// The part of the layer's fibre region no ribbon covers, for the preview.
-std::vector<Polygon> uncovered_region(const LayerOutline& outline,
-                                      const std::vector<Toolpath>& paths, double w);
-
 }  // namespace fibrecell::planner

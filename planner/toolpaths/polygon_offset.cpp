@@ -182,39 +182,6 @@ std::vector<Polygon> region_difference(const std::vector<Polygon>& a,
     return from_clipper(result);
 }
 
-std::vector<Polygon> ribbon_band(const std::vector<RibbonLine>& lines, double half_width_mm,
-                                 const OffsetOptions& options) {
-    if (!(half_width_mm > 0) || !std::isfinite(half_width_mm))
-        throw std::invalid_argument("ribbon half_width_mm must be positive");
-    if (!(options.arc_tolerance_mm > 0))
-        throw std::invalid_argument("offset arc_tolerance_mm must be positive");
-    ClipperLib::ClipperOffset offset(2.0, options.arc_tolerance_mm * units_per_mm);
-    for (const RibbonLine& line : lines) {
-        if (line.points->size() < 2) continue;
-        ClipperLib::Path path;
-        path.reserve(line.points->size());
-        for (const Eigen::Vector2d& p : *line.points) path.push_back(to_units(p));
-        offset.AddPath(path, ClipperLib::jtRound,
-                       line.closed && path.size() > 2 ? ClipperLib::etClosedLine
-                                                      : ClipperLib::etOpenButt);
-    }
-    ClipperLib::Paths result;
-    offset.Execute(result, half_width_mm * units_per_mm);
-    return from_clipper(result);
-}
-
-std::vector<Polygon> region_intersection(const std::vector<Polygon>& a,
-                                         const std::vector<Polygon>& b) {
-    if (a.empty() || b.empty()) return {};
-    ClipperLib::Clipper clipper;
-    clipper.AddPaths(to_clipper(a), ClipperLib::ptSubject, true);
-    clipper.AddPaths(to_clipper(b), ClipperLib::ptClip, true);
-    ClipperLib::Paths result;
-    clipper.Execute(ClipperLib::ctIntersection, result, ClipperLib::pftEvenOdd,
-                    ClipperLib::pftEvenOdd);
-    return from_clipper(result);
-}
-
 double region_area(const std::vector<Polygon>& loops) {
     if (loops.empty()) return 0;
     double area = 0;  // outer loops counter-clockwise (positive), holes clockwise (negative)

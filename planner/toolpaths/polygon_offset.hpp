@@ -37,20 +37,6 @@ using Segment2 = std::array<Eigen::Vector2d, 2>;
 std::vector<Polygon> segment_band(const std::vector<Segment2>& segments, double radius_mm,
                                   const OffsetOptions& options = {});
 
-// The region a W-wide ribbon covers along each line [mm]: the union of the bands within
-// half_width_mm of each, square at an open line's ends (a ribbon is cut across, not rounded),
-// as loops read even-odd. Lines with fewer than 2 points add nothing. Throws as segment_band.
-struct RibbonLine {
-    const std::vector<Eigen::Vector2d>* points;
-    bool closed = false;
-};
-std::vector<Polygon> ribbon_band(const std::vector<RibbonLine>& lines, double half_width_mm,
-                                 const OffsetOptions& options = {});
-
-// The region in both `a` and `b` (both read even-odd), outer loops counter-clockwise.
-std::vector<Polygon> region_intersection(const std::vector<Polygon>& a,
-                                         const std::vector<Polygon>& b);
-
 // Area [mm^2] of a region read even-odd (holes subtract, overlaps do not count twice).
 double region_area(const std::vector<Polygon>& loops);
 
