@@ -57,9 +57,10 @@ inline std::int64_t first_of(const abb::PrintProgram& program, EventKind kind) {
     return 0;
 }
 
-inline abb::PrintProgram make_program(const std::vector<planner::ToolpathLayer>& layers) {
+inline abb::PrintProgram make_program(const std::vector<planner::ToolpathLayer>& layers,
+                                     double ccf_speed_mm_s = ccf_speed) {
     return abb::build_print_program(layers, abb::RobotCellConfig{},
-                                    {.pla_speed_mm_s = pla_speed, .ccf_speed_mm_s = ccf_speed,
+                                    {.pla_speed_mm_s = pla_speed, .ccf_speed_mm_s = ccf_speed_mm_s,
                                      .cutter_distance_mm = 42});
 }
 
