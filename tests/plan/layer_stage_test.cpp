@@ -128,6 +128,18 @@ TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
     EXPECT_EQ(report["layers"]["pla"], 2);
     EXPECT_EQ(report["layers"]["ccf"], 2);
     EXPECT_GT(report["fibre"]["length_m"].get<double>(), 1.0);
+    // Coverage per CCF layer and over both (fibre_coverage_test.cpp checks the figures).
+    const auto& coverage = report["fibre"]["coverage"];
+    ASSERT_EQ(coverage["layers"].size(), 2u);
+    double fibre_m = 0;
+    for (const auto& layer : coverage["layers"]) {
+        EXPECT_GT(layer["coverage"].get<double>(), 0.1);
+        EXPECT_LE(layer["covered"].get<double>(), 1.0);
+        EXPECT_GT(layer["paths"].get<int>(), 0);
+        fibre_m += layer["fibre_m"].get<double>();
+    }
+    EXPECT_NEAR(fibre_m, report["fibre"]["length_m"].get<double>(), 1e-9);
+    EXPECT_NEAR(coverage["fibre_m"].get<double>(), fibre_m, 1e-9);
     for (const char* key : {"vector_field", "scalar_field", "extraction", "connection"})
         EXPECT_TRUE(report["timings_s"]["per_layer_mean"][key].is_number()) << key;
     // The robot's side: RAPID chunks the project's reader accepts, counted in the report.

@@ -13,8 +13,11 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fibrecell::tools {
 namespace {
@@ -42,42 +45,62 @@ const planner::MechanicsResult& mechanics_of(const jobs::PlanJobResult& plan) {
     return *plan.mechanics;
 }
 
-nlohmann::json column(double fibre_m, const planner::PartResponse& r, double bare_stiffness) {
-    return {
-        {"fibre_m", fibre_m},
-        {"stiffness_n_per_mm", r.stiffness_n_per_mm},
-        {"vs_no_fibre", r.stiffness_n_per_mm / bare_stiffness},
-        {"matrix_von_mises_mpa", {{"peak", r.von_mises_peak_mpa}, {"p99", r.von_mises_p99_mpa}}},
-        {"fibre_stress_peak_mpa", r.fibre_stress_peak_mpa}};
+// The predicted response of a part, as compare.json's columns have it.
+nlohmann::json response_column(const planner::PartResponse& r, double bare_stiffness) {
+    return {{"stiffness_n_per_mm", r.stiffness_n_per_mm},
+            {"vs_no_fibre", r.stiffness_n_per_mm / bare_stiffness},
+            {"matrix_von_mises_mpa", {{"peak", r.von_mises_peak_mpa}, {"p99", r.von_mises_p99_mpa}}},
+            {"fibre_stress_peak_mpa", r.fibre_stress_peak_mpa}};
 }
 
-void print_table(const nlohmann::json& c) {
-    const auto& none = c["no_fibre"];
-    const auto& zig = c["contour_zigzag"];
-    const auto& field = c["field"];
-    std::printf("\n%-26s %12s %15s %12s\n", "", "no fibre", "contour-zigzag", "field");
-    std::printf("%-26s %12s %15.2f %12.2f\n", "fibre [m]", "-", zig["fibre_m"].get<double>(),
-                field["fibre_m"].get<double>());
-    auto row = [&](const char* name, const char* key) {
-        std::printf("%-26s %12.1f %15.1f %12.1f\n", name, none[key].get<double>(),
-                    zig[key].get<double>(), field[key].get<double>());
+// A plan's column: its response and the fibre it placed, how much of the fibre region it covers.
+nlohmann::json plan_column(const jobs::PlanJobResult& plan, double bare_stiffness) {
+    const planner::MechanicsResult& m = mechanics_of(plan);
+    nlohmann::json c = response_column(m.prediction.reinforced, bare_stiffness);
+    const auto& stats = plan.layers->stats;
+    c["fibre_m"] = m.fibre_placed_mm / 1000.0;
+    c["coverage"] = stats.coverage.coverage();
+    c["covered"] = stats.coverage.covered_fraction();
+    c["paths"] = stats.fibre_paths;
+    return c;
+}
+
+// A table of columns (each a compare.json object), rows of figures, "-" where a column has none.
+void print_table(const char* heading, const std::vector<std::pair<std::string, const nlohmann::json*>>& cols) {
+    std::printf("\n%s\n%-26s", heading, "");
+    for (const auto& [title, c] : cols) std::printf(" %15s", title.c_str());
+    std::printf("\n");
+    const auto row = [&](const char* name, auto value, int digits) {
+        std::printf("%-26s", name);
+        for (const auto& [title, c] : cols) {
+            const std::optional<double> v = value(*c);
+            if (v)
+                std::printf(" %15.*f", digits, *v);
+            else
+                std::printf(" %15s", "-");
+        }
+        std::printf("\n");
     };
-    row("stiffness [N/mm]", "stiffness_n_per_mm");
-    std::printf("%-26s %12.2f %15.2f %12.2f\n", "  vs no fibre", 1.0,
-                zig["vs_no_fibre"].get<double>(), field["vs_no_fibre"].get<double>());
-    std::printf("%-26s %12s %15.2f %12.2f\n", "  vs contour-zigzag", "", 1.0,
-                c["field_vs_contour_zigzag"].get<double>());
-    std::printf("%-26s %12.1f %15.1f %12.1f\n", "PLA von Mises peak [MPa]",
-                none["matrix_von_mises_mpa"]["peak"].get<double>(),
-                zig["matrix_von_mises_mpa"]["peak"].get<double>(),
-                field["matrix_von_mises_mpa"]["peak"].get<double>());
-    std::printf("%-26s %12.1f %15.1f %12.1f\n", "PLA von Mises p99 [MPa]",
-                none["matrix_von_mises_mpa"]["p99"].get<double>(),
-                zig["matrix_von_mises_mpa"]["p99"].get<double>(),
-                field["matrix_von_mises_mpa"]["p99"].get<double>());
-    std::printf("%-26s %12s %15.0f %12.0f\n", "fibre stress peak [MPa]", "-",
-                zig["fibre_stress_peak_mpa"].get<double>(),
-                field["fibre_stress_peak_mpa"].get<double>());
+    const auto key = [](const char* k) {
+        return [k](const nlohmann::json& c) -> std::optional<double> {
+            if (!c.contains(k)) return std::nullopt;
+            return c[k].get<double>();
+        };
+    };
+    const auto stress = [](const char* which) {
+        return [which](const nlohmann::json& c) -> std::optional<double> {
+            if (!c.contains("matrix_von_mises_mpa")) return std::nullopt;
+            return c["matrix_von_mises_mpa"][which].get<double>();
+        };
+    };
+    row("fibre [m]", key("fibre_m"), 2);
+    row("coverage", key("coverage"), 3);
+    row("paths", key("paths"), 0);
+    row("stiffness [N/mm]", key("stiffness_n_per_mm"), 1);
+    row("  vs no fibre", key("vs_no_fibre"), 2);
+    row("PLA von Mises peak [MPa]", stress("peak"), 1);
+    row("PLA von Mises p99 [MPa]", stress("p99"), 1);
+    row("fibre stress peak [MPa]", key("fibre_stress_peak_mpa"), 0);
 }
 
 int run_compare(const CompareArgs& args) {
@@ -86,36 +109,68 @@ int run_compare(const CompareArgs& args) {
         jobs::ThreadPool pool({.threads = args.threads});
         jobs::PlanRequest request{.job_file = args.job, .executor = &pool};
         if (!args.cell.empty()) request.cell = daemon::load_cell_config(args.cell);
+        const auto plan_as = [&](planner::Strategy strategy, const std::string& dir,
+                                 std::optional<planner::FibreBudget> budget, const char* what) {
+            request.out_dir = out / dir;
+            request.strategy = strategy;
+            request.fibre_budget = budget;
+            jobs::PlanJobResult plan = plan_one(request, what);
+            mechanics_of(plan);  // a job without a load case stops here
+            return plan;
+        };
 
-        request.out_dir = out / "field";
-        request.strategy = planner::Strategy::field;
-        const jobs::PlanJobResult field = plan_one(request, "the field strategy");
-        const planner::MechanicsResult& fm = mechanics_of(field);
+        const jobs::PlanJobResult field =
+            plan_as(planner::Strategy::field, "field", std::nullopt, "the field strategy");
         const auto& fs = field.layers->stats;
         if (fs.ccf_layers == 0 || fs.fibre_length_mm <= 0)
             throw std::invalid_argument("the field strategy laid no fibre: nothing to compare");
+        // The paper's comparison: the same fibre (the field's, per CCF layer), in other places.
+        const planner::FibreBudget same{planner::FibreBudget::Kind::metres_per_layer,
+                                        fs.fibre_length_mm / 1000.0 / fs.ccf_layers};
+        const jobs::PlanJobResult zigzag = plan_as(planner::Strategy::contour_zigzag, "contour-zigzag",
+                                                   same, "contour-zigzag at the same fibre");
+        const jobs::PlanJobResult dense = plan_as(planner::Strategy::field_dense, "field-dense", same,
+                                                  "field-dense at the same fibre");
+        // And each as much as it lays at its own defaults.
+        const jobs::PlanJobResult zigzag_own = plan_as(
+            planner::Strategy::contour_zigzag, "contour-zigzag-defaults", std::nullopt,
+            "contour-zigzag at its defaults");
+        const jobs::PlanJobResult dense_own = plan_as(
+            planner::Strategy::field_dense, "field-dense-defaults", std::nullopt,
+            "field-dense at its defaults");
 
-        // The paper's comparison: the same fibre, in a different place.
-        request.out_dir = out / "contour-zigzag";
-        request.strategy = planner::Strategy::contour_zigzag;
-        request.fibre_budget = planner::FibreBudget{planner::FibreBudget::Kind::metres_per_layer,
-                                                    fs.fibre_length_mm / 1000.0 / fs.ccf_layers};
-        const jobs::PlanJobResult zigzag = plan_one(request, "contour-zigzag at the same fibre");
-        const planner::MechanicsResult& zm = mechanics_of(zigzag);
-
-        const double bare = fm.prediction.bare.stiffness_n_per_mm;
+        const planner::PartResponse& bare_part = mechanics_of(field).prediction.bare;
+        const double bare = bare_part.stiffness_n_per_mm;
+        const auto of = [&](const jobs::PlanJobResult* plan) { return plan_column(*plan, bare); };
+        nlohmann::json no_fibre = response_column(bare_part, bare);
+        no_fibre["fibre_m"] = 0.0;
+        no_fibre.erase("fibre_stress_peak_mpa");
         nlohmann::json c = {
             {"format", "fibrecell.compare/1"},
             {"job", field.job.name},
-            {"no_fibre", column(0, fm.prediction.bare, bare)},
-            {"contour_zigzag", column(zm.fibre_placed_mm / 1000.0, zm.prediction.reinforced, bare)},
-            {"field", column(fm.fibre_placed_mm / 1000.0, fm.prediction.reinforced, bare)},
-            {"field_vs_contour_zigzag", fm.prediction.reinforced.stiffness_n_per_mm /
-                                            zm.prediction.reinforced.stiffness_n_per_mm},
-            {"fibre_budget_m_per_layer", request.fibre_budget->metres_per_layer}};
-        print_table(c);
+            {"no_fibre", no_fibre},
+            {"contour_zigzag", of(&zigzag)},
+            {"field", of(&field)},
+            {"field_dense", of(&dense)},
+            {"fibre_budget_m_per_layer", same.metres_per_layer},
+            {"own_defaults",
+             {{"contour_zigzag", of(&zigzag_own)},
+              {"field", of(&field)},
+              {"field_dense", of(&dense_own)}}}};
+        c["field_vs_contour_zigzag"] =
+            c["field"]["stiffness_n_per_mm"].get<double>() / c["contour_zigzag"]["stiffness_n_per_mm"].get<double>();
+        const auto& own = c["own_defaults"];
+        print_table("At the same fibre (the field strategy's, per CCF layer):",
+                    {{"no fibre", &c["no_fibre"]}, {"contour-zigzag", &c["contour_zigzag"]},
+                     {"field", &c["field"]}, {"field-dense", &c["field_dense"]}});
+        print_table("Each at its own defaults:",
+                    {{"no fibre", &c["no_fibre"]}, {"contour-zigzag", &own["contour_zigzag"]},
+                     {"field", &own["field"]}, {"field-dense", &own["field_dense"]}});
+        std::printf("\nfield / contour-zigzag at the same fibre: %.3f\n",
+                    c["field_vs_contour_zigzag"].get<double>());
         std::ofstream(out / "compare.json") << c.dump(2) << "\n";
-        std::printf("\nwrote      %s/compare.json, plans in %s/field and %s/contour-zigzag\n",
+        std::printf("\nwrote      %s/compare.json, plans in %s/{field,contour-zigzag,field-dense} "
+                    "(same fibre) and %s/{contour-zigzag,field-dense}-defaults\n",
                     args.out.c_str(), args.out.c_str(), args.out.c_str());
         return 0;
     } catch (const std::exception& e) {
@@ -129,7 +184,7 @@ int run_compare(const CompareArgs& args) {
 void add_compare_command(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<CompareArgs>();
     auto* cmd = app.add_subcommand(
-        "compare", "plan a job with both strategies at the same fibre and predict their stiffness");
+        "compare", "plan a job with each strategy, at the same fibre and at its defaults, and predict the stiffness");
     cmd->add_option("job", args->job, "job file (YAML)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--out", args->out, "folder for both plans and compare.json")->required();
     add_planning_options(cmd, args->threads, args->cell);
