@@ -14,7 +14,7 @@ set(fibrecell_slow_tests
     "ServiceTest.AStopDoesNotWaitForPlanningPastItsGraceAndTheJobPlansAtTheNextStart=11"
     "ExampleGuarantees.Loop=12"
     "ServiceTest.TheJobsSettingsReachTheBoardAndTheRobot=10"
-    "ReferenceGuarantees.YogaNew=8"
+    "ReferenceGuarantees.YogaNew=13"
     "ReferenceGuarantees.Bunnyhead=10"
     "ServiceTest.APlanForACellThatChangedIsRefusedUntilItIsReplanned=9"
     "ServiceTest.AJobIsPlannedAndPrintedWhileTwoClientsWatchIt=9"
