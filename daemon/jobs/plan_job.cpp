@@ -75,7 +75,9 @@ void write_layer_outputs(print::PlanWriter& out, const PlanJobResult& r) {
         maps[i] = {&layers.sections[i], layers.sigma[i]};
         backgrounds[i] = &maps[i];
     }
-    for (const auto& f : planner::preview_files(layers.layers, layers.outlines, backgrounds, {},
+    // Every fibre path also as the W-wide ribbon it lays: the gaps are what it leaves uncovered.
+    for (const auto& f : planner::preview_files(layers.layers, layers.outlines, backgrounds,
+                                                {.ribbon_mm = job.planner.fibre_spacing_mm},
                                                 analysis_figures(r)))
         out.write("preview/" + f.name, f.text);
 }

@@ -194,6 +194,20 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
             out += "\"/>\n";
         }
     }
+    if (options.ribbon_mm > 0 && layer.head == Head::ccf) {
+        // One group's opacity, not each path's: overlapping ribbons are not drawn brighter.
+        out += "<g class=\"ribbons\" opacity=\"0.45\" fill=\"none\" stroke=\"#ffffff\" "
+               "stroke-linejoin=\"round\" stroke-width=\"";
+        append_svg_number(out, options.ribbon_mm);
+        out += "\">\n";
+        for (const Toolpath& path : layer.paths) {
+            if (path.points.size() < 2) continue;
+            out += "<path d=\"";
+            append_polyline_d(out, frame, path.points, path.closed);
+            out += "\"/>\n";
+        }
+        out += "</g>\n";
+    }
     out += "<g stroke-width=\"";
     append_svg_number(out, options.path_width_mm);
     out += "\">\n";

@@ -27,6 +27,9 @@ struct PreviewOptions {
     double margin_mm = 2;                        // blank border around the drawing
     double path_width_mm = 0.3;                  // stroke of the toolpaths
     bool show_travel = true;                     // thin grey lines between consecutive paths
+    // > 0: a CCF layer's fibre paths are also drawn as what they cover, W-wide ribbons in a
+    // translucent white (overlaps not brighter): where the layer shows through, no fibre lies.
+    double ribbon_mm = 0;
     std::optional<Eigen::AlignedBox2d> view_mm;  // area drawn; empty: fit this layer
 };
 
@@ -34,7 +37,8 @@ struct PreviewOptions {
 std::string preview_svg_name(int layer_index);
 
 // One layer as an SVG document, y up. Paths are <path class="ROLE"> (perimeter, infill, fibre,
-// fibre-boundary; travel moves class "travel"), the outline one <path class="outline">, the
+// fibre-boundary; travel moves class "travel"; with options.ribbon_mm, the fibre ribbons one
+// <g class="ribbons">), the outline one <path class="outline">, the
 // background triangles <polygon class="field">. outline and background may be null. Throws
 // std::invalid_argument when the background's values do not match its mesh's triangles.
 std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,

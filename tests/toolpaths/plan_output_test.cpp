@@ -170,6 +170,28 @@ TEST_F(PlanOutput, SvgHasYUp) {
     EXPECT_NE(svg.find("d=\"M2 12 L12 2\""), std::string::npos) << svg;  // (0,0) bottom-left
 }
 
+TEST_F(PlanOutput, AFibreLayerShowsTheRibbonsItsPathsLay) {
+    const ToolpathLayer fibre{1, 0.85, Head::ccf, 0.05,
+                              {{PathRole::fibre, false, {{0, 0}, {10, 0}}},
+                               {PathRole::fibre_boundary, true, {{0, 2}, {10, 2}, {10, 4}}}}};
+    const ToolpathLayer pla{0, 0.8, Head::pla, 0.8, {{PathRole::infill, false, {{0, 0}, {10, 10}}}}};
+    PreviewOptions options;
+    options.margin_mm = 0;
+    options.ribbon_mm = 1.1;
+    const std::string svg = layer_svg(fibre, nullptr, nullptr, options);
+    const auto at = svg.find("<g class=\"ribbons\"");
+    ASSERT_NE(at, std::string::npos) << svg;
+    const std::string ribbons = svg.substr(at, svg.find("</g>", at) - at);
+    EXPECT_NE(ribbons.find("stroke-width=\"1.1\""), std::string::npos) << ribbons;
+    EXPECT_EQ(count(ribbons, "<path d="), 2u);  // one per fibre path, rings too
+    EXPECT_EQ(count(ribbons, "Z"), 1u);         // the ring closed
+    // Under the paths, so that the paths show on top.
+    EXPECT_LT(at, svg.find("<path class=\"fibre\""));
+    EXPECT_EQ(layer_svg(pla, nullptr, nullptr, options).find("ribbons"), std::string::npos);
+    options.ribbon_mm = 0;
+    EXPECT_EQ(layer_svg(fibre, nullptr, nullptr, options).find("ribbons"), std::string::npos);
+}
+
 TEST_F(PlanOutput, PreviewRejectsMismatchedInputs) {
     const std::vector<ToolpathLayer> layers = two_layers();
     EXPECT_THROW(preview_files(layers, {LayerOutline{}}, {}), std::invalid_argument);
