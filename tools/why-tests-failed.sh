@@ -14,11 +14,15 @@ failed="$build/Testing/Temporary/LastTestsFailed.log"
 echo "why the failed tests failed (from $log):"
 while IFS=: read -r _ name; do
     echo "--- $name"
-    # The test's output lies between its "Test: NAME" header and the next "<end of output>".
-    awk -v name="$name" '
-        $0 ~ /^[0-9]+\/[0-9]+ Test: / { sub(/^[0-9]+\/[0-9]+ Test: /, ""); inside = ($0 == name); next }
-        inside && /^<end of output>/ { inside = 0 }
-        inside' "$log" |
-        grep -E -A4 'Failure$|^FAIL|Expected|Which is|Timeout|timed out|AddressSanitizer|runtime error|terminate called' |
-        head -n "$per_test" || true
+    # The test's output: after its "Test: NAME" header, from the rule under "Output:" to the next
+    # "<end of output>".
+    output=$(awk -v name="$name" '
+        $0 ~ /^[0-9]+\/[0-9]+ Test: / { sub(/^[0-9]+\/[0-9]+ Test: /, ""); wanted = ($0 == name); next }
+        wanted && /^Output:/ { getline; inside = 1; next }
+        inside && /^<end of output>/ { inside = wanted = 0 }
+        inside' "$log")
+    why=$(grep -E -A4 'Failure$|^FAIL|Expected|Which is|timed out|AddressSanitizer|runtime error|terminate called' \
+        <<<"$output" | head -n "$per_test" || true)
+    # Nothing that reads as a failure (a timeout, a crash): how its output ended.
+    if [ -n "$why" ]; then echo "$why"; else tail -n 5 <<<"$output"; fi
 done <"$failed"
