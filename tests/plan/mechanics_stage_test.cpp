@@ -4,6 +4,7 @@
 #include "planner/plan/mechanics_stage.hpp"
 
 #include "planner/job/job_spec.hpp"
+#include "planner/plan/fibre_ceiling.hpp"
 #include "planner/plan/layer_stage.hpp"
 #include "tests/support/plan_inputs.hpp"
 #include "tests/support/project_paths.hpp"
@@ -59,6 +60,42 @@ TEST(MechanicsStage, TheTensileBarIsStifferWithItsFibre) {
     EXPECT_GT(m.prediction.reinforced.fibre_stress_peak_mpa, 0);
     // The fibre takes load off the PLA.
     EXPECT_LT(m.prediction.reinforced.von_mises_p99_mpa, m.prediction.bare.von_mises_p99_mpa);
+
+    // The ceiling: each CCF section laid full at W, along the bar's tension (x).
+    const LayerStageResult ideal = ideal_fibre_layers(job, field, p.layers);
+    ASSERT_EQ(ideal.layers.size(), p.layers.layers.size());
+    for (std::size_t i = 0; i < ideal.layers.size(); ++i) {
+        const ToolpathLayer& layer = ideal.layers[i];
+        if (layer.head != Head::ccf) {
+            EXPECT_EQ(layer.paths.size(), p.layers.layers[i].paths.size());
+            continue;
+        }
+        double area = 0, laid = 0;
+        for (const Polygon& loop : p.layers.outlines[i].loops) {
+            double twice = 0;  // the shoelace sum: outer loops counter-clockwise, holes clockwise
+            for (std::size_t k = 0; k < loop.size(); ++k) {
+                const Eigen::Vector2d& a = loop[k];
+                const Eigen::Vector2d& b = loop[(k + 1) % loop.size()];
+                twice += a.x() * b.y() - b.x() * a.y();
+            }
+            area += twice / 2;
+        }
+        double along_x = 0;
+        for (const Toolpath& path : layer.paths) {
+            const Eigen::Vector2d d = path.points.back() - path.points.front();
+            laid += d.norm();
+            along_x += std::abs(d.x());
+        }
+        EXPECT_NEAR(laid * job.planner.fibre_spacing_mm, area, 1e-6 * area) << "layer " << i;
+        // Along the bar but where the shoulders turn the tension (length-weighted |cos|).
+        EXPECT_GT(along_x / laid, 0.97) << "layer " << i;
+    }
+    const MechanicsResult ceiling = run_mechanics_stage(job, field, ideal);
+    std::printf("tensile bar ceiling: %.1f N/mm with %.2f m (the plan %.1f N/mm with %.2f m)\n",
+                ceiling.prediction.reinforced.stiffness_n_per_mm, ceiling.fibre_placed_mm / 1000,
+                m.prediction.reinforced.stiffness_n_per_mm, m.fibre_placed_mm / 1000);
+    EXPECT_GT(ceiling.prediction.reinforced.stiffness_n_per_mm,
+              m.prediction.reinforced.stiffness_n_per_mm);
 }
 
 TEST(MechanicsStage, OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre) {

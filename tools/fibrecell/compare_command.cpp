@@ -3,6 +3,8 @@
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/plan_job.hpp"
 #include "daemon/jobs/thread_pool.hpp"
+#include "planner/plan/fibre_ceiling.hpp"
+#include "planner/plan/mechanics_stage.hpp"
 #include "tools/fibrecell/console_progress.hpp"
 #include "tools/fibrecell/planning_options.hpp"
 
@@ -98,6 +100,7 @@ void print_table(const char* heading, const std::vector<std::pair<std::string, c
     row("paths", key("paths"), 0);
     row("stiffness [N/mm]", key("stiffness_n_per_mm"), 1);
     row("  vs no fibre", key("vs_no_fibre"), 2);
+    row("  of the ceiling's gain", key("of_ceiling_gain"), 2);
     row("PLA von Mises peak [MPa]", stress("peak"), 1);
     row("PLA von Mises p99 [MPa]", stress("p99"), 1);
     row("fibre stress peak [MPa]", key("fibre_stress_peak_mpa"), 0);
@@ -139,6 +142,11 @@ int run_compare(const CompareArgs& args) {
             planner::Strategy::field_dense, "field-dense-defaults", std::nullopt,
             "field-dense at its defaults");
 
+        // The ceiling: the field's sections laid full, all along the principal direction.
+        std::fprintf(stderr, "predicting the ceiling (every section full, along the stress)\n");
+        const planner::MechanicsResult ceiling = planner::run_mechanics_stage(
+            field.job, field.field, planner::ideal_fibre_layers(field.job, field.field, *field.layers));
+
         const planner::PartResponse& bare_part = mechanics_of(field).prediction.bare;
         const double bare = bare_part.stiffness_n_per_mm;
         const auto of = [&](const jobs::PlanJobResult* plan) { return plan_column(*plan, bare); };
@@ -157,15 +165,25 @@ int run_compare(const CompareArgs& args) {
              {{"contour_zigzag", of(&zigzag_own)},
               {"field", of(&field)},
               {"field_dense", of(&dense_own)}}}};
+        c["ceiling"] = response_column(ceiling.prediction.reinforced, bare);
+        c["ceiling"]["fibre_m"] = ceiling.fibre_placed_mm / 1000.0;
+        // How much of the possible gain each plan takes.
+        const double possible = ceiling.prediction.reinforced.stiffness_n_per_mm - bare;
+        for (auto* column : {&c["contour_zigzag"], &c["field"], &c["field_dense"],
+                             &c["own_defaults"]["contour_zigzag"], &c["own_defaults"]["field"],
+                             &c["own_defaults"]["field_dense"]})
+            (*column)["of_ceiling_gain"] =
+                possible > 0 ? ((*column)["stiffness_n_per_mm"].get<double>() - bare) / possible : 0.0;
         c["field_vs_contour_zigzag"] =
             c["field"]["stiffness_n_per_mm"].get<double>() / c["contour_zigzag"]["stiffness_n_per_mm"].get<double>();
         const auto& own = c["own_defaults"];
         print_table("At the same fibre (the field strategy's, per CCF layer):",
                     {{"no fibre", &c["no_fibre"]}, {"contour-zigzag", &c["contour_zigzag"]},
                      {"field", &c["field"]}, {"field-dense", &c["field_dense"]}});
-        print_table("Each at its own defaults:",
+        print_table("Each at its own defaults, and the ceiling (every section full, along the stress):",
                     {{"no fibre", &c["no_fibre"]}, {"contour-zigzag", &own["contour_zigzag"]},
-                     {"field", &own["field"]}, {"field-dense", &own["field_dense"]}});
+                     {"field", &own["field"]}, {"field-dense", &own["field_dense"]},
+                     {"ceiling", &c["ceiling"]}});
         std::printf("\nfield / contour-zigzag at the same fibre: %.3f\n",
                     c["field_vs_contour_zigzag"].get<double>());
         std::ofstream(out / "compare.json") << c.dump(2) << "\n";
