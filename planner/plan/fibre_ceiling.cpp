@@ -2,6 +2,7 @@
 
 #include "planner/layers/placement.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fibrecell::planner {
@@ -26,10 +27,19 @@ LayerStageResult ideal_fibre_layers(const JobSpec& job, const FieldStageResult& 
             const Eigen::Vector2d a = section.vertices[t[0]], b = section.vertices[t[1]],
                                   c = section.vertices[t[2]];
             const Eigen::Vector2d e1 = b - a, e2 = c - a;
-            const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-            const Eigen::Vector2d half = along.normalized() * (area / w / 2);
+            const double twice_area = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+            if (!(twice_area > 0)) continue;
+            // area / W of fibre, in pieces through the centroid short enough to stay inside the
+            // triangle (the centroid lies a third of each height from its side), so that all of
+            // it is counted in this triangle's tet.
+            const double shortest_height =
+                twice_area / std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+            const double length = 0.5 * twice_area / w;
+            const int pieces = static_cast<int>(std::ceil(length / (2 * shortest_height / 3)));
+            const Eigen::Vector2d half = along.normalized() * (length / pieces / 2);
             const Eigen::Vector2d centre = (a + b + c) / 3;
-            layer.paths.push_back({PathRole::fibre, false, {centre - half, centre + half}});
+            for (int k = 0; k < pieces; ++k)
+                layer.paths.push_back({PathRole::fibre, false, {centre - half, centre + half}});
         }
     }
     return out;

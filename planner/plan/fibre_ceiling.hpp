@@ -12,8 +12,9 @@
 namespace fibrecell::planner {
 
 // `layers` with each CCF layer's paths replaced by the ideal fibre: per section triangle whose
-// tet has a defined direction, one straight piece through its centroid along that direction,
-// area / W long (so the section gets fibre length x W = its area). PLA layers as they are.
+// tet has a defined direction, area / W of fibre along that direction in straight pieces through
+// its centroid, each short enough to stay inside the triangle (so the section gets fibre
+// length x W = its area, all of it in the tets it belongs to). PLA layers as they are.
 LayerStageResult ideal_fibre_layers(const JobSpec& job, const FieldStageResult& field,
                                     const LayerStageResult& layers);
 

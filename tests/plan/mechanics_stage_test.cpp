@@ -91,6 +91,8 @@ TEST(MechanicsStage, TheTensileBarIsStifferWithItsFibre) {
         EXPECT_GT(along_x / laid, 0.97) << "layer " << i;
     }
     const MechanicsResult ceiling = run_mechanics_stage(job, field, ideal);
+    // Every piece inside its own triangle, so inside the part: all of it found in the tets.
+    EXPECT_LT(ceiling.fibre_unplaced_mm, 1e-6 * ceiling.fibre_placed_mm);
     std::printf("tensile bar ceiling: %.1f N/mm with %.2f m (the plan %.1f N/mm with %.2f m)\n",
                 ceiling.prediction.reinforced.stiffness_n_per_mm, ceiling.fibre_placed_mm / 1000,
                 m.prediction.reinforced.stiffness_n_per_mm, m.fibre_placed_mm / 1000);

@@ -167,6 +167,7 @@ int run_compare(const CompareArgs& args) {
               {"field_dense", of(&dense_own)}}}};
         c["ceiling"] = response_column(ceiling.prediction.reinforced, bare);
         c["ceiling"]["fibre_m"] = ceiling.fibre_placed_mm / 1000.0;
+        c["ceiling"]["of_ceiling_gain"] = 1.0;
         // How much of the possible gain each plan takes.
         const double possible = ceiling.prediction.reinforced.stiffness_n_per_mm - bare;
         for (auto* column : {&c["contour_zigzag"], &c["field"], &c["field_dense"],
