@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace fibrecell::planner {
@@ -152,11 +153,13 @@ FibreCoverage& FibreCoverage::operator+=(const FibreCoverage& o) {
 
 FibreCoverage fibre_coverage(const LayerOutline& outline, const std::vector<Toolpath>& paths,
                              double w) {
+    if (!(w > 0) || !std::isfinite(w))
+        throw std::invalid_argument("fibre coverage: the ribbon width must be positive");
     FibreCoverage c{.ribbon_mm = w};
+    for (const Toolpath& p : paths) c.fibre_mm += path_length(p);
     if (outline.loops.empty()) return c;
     const std::vector<Polygon> region = offset_region(outline.loops, -w / 2);
     c.region_mm2 = region_area(region);
-    for (const Toolpath& p : paths) c.fibre_mm += path_length(p);
     if (c.region_mm2 <= 0 || c.fibre_mm <= 0) return c;
 
     double y_lo = INFINITY, y_hi = -INFINITY;

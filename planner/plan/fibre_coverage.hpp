@@ -20,11 +20,13 @@ struct FibreCoverage {
 
     double coverage() const { return region_mm2 > 0 ? fibre_mm * ribbon_mm / region_mm2 : 0.0; }
     double covered_fraction() const { return region_mm2 > 0 ? covered_mm2 / region_mm2 : 0.0; }
-    // Sums over layers (each layer's own W kept as the last one's: a job has one W).
+    // Sums over layers (a job has one W). A layer whose region vanished (narrower than W) adds
+    // its fibre, if any, and no area.
     FibreCoverage& operator+=(const FibreCoverage& o);
 };
 
-// paths: the layer's fibre paths (every role) [mm]; w: the ribbon's width [mm].
+// paths: the layer's fibre paths (every role) [mm]; w: the ribbon's width [mm], positive (else
+// std::invalid_argument).
 FibreCoverage fibre_coverage(const LayerOutline& outline, const std::vector<Toolpath>& paths,
                              double w);
 
