@@ -254,6 +254,11 @@ void PrintRunner::handle(Command& c) {
         switch (c.kind) {
             case Command::Kind::start: start_job(c.id); break;
             case Command::Kind::pause:
+                if (!mine && jobs::is_ended(store_.get(c.id).state)) {
+                    // The print ended between the request and here: the job completed instead.
+                    spdlog::info("print.pause_too_late job {}: it had ended", c.id);
+                    break;
+                }
                 if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
                 active_->session->pause();
                 // The robot brakes on the pause request: paused once it stands (or after 2 s).
