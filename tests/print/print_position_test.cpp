@@ -1,9 +1,11 @@
 // Where the board acted along the robot's path, end to end in simulation with every driver
 // real (print_cell_fixture.hpp): every cut against its cut point, and the PLA feed's start and
 // stop against each path's ends, from the robot's recorded trajectory and the mock board's times.
-// A test of timing: CTest runs it alone (RUN_SERIAL in tests/CMakeLists.txt), since other
-// processes saturating both cores delay the pseudo-terminal by up to seconds (docs/sync-engine.md).
+// A test of timing: it runs beside the rest of the suite, as it must pass on a busy machine
+// (docs/sync-engine.md says what load did to it and does now).
 #include "print_cell_fixture.hpp"
+
+#include <cstdio>
 
 using namespace fibrecell;
 using namespace fibrecell::test;
@@ -74,6 +76,8 @@ TEST_F(PrintPositionTest, ASmallJobRunsTheExactBoardLogAndCutsAndExtrudesWhereIt
     }
     ASSERT_EQ(cut_errors.size(), 2u);
     ASSERT_EQ(pla_errors.size(), 4u);
+    std::printf("cut errors %s mm; PLA end errors %s mm\n", describe(cut_errors).c_str(),
+                describe(pla_errors).c_str());
     RecordProperty("cut_errors_mm", describe(cut_errors));
     RecordProperty("pla_end_errors_mm", describe(pla_errors));
     for (double e : cut_errors) EXPECT_LT(e, 0.5) << "cut errors " << describe(cut_errors);

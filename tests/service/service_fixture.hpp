@@ -92,7 +92,10 @@ class ServiceTest : public ::testing::Test {
   protected:
     void SetUp() override {
         fs::create_directories(dir_ / "jobs");
-        const auto mesh = planner::structured_tet_mesh({.size = {60, 10, 1.6}, .cells = {30, 5, 2}});
+        // A bar pulled along x, 40 mm long: each CCF layer lays three paths of 80 mm or more
+        // (lengths of the bar joined), well past the cutter's 42 mm; 60 mm cost the service
+        // tests a sixth more time and tested nothing more.
+        const auto mesh = planner::structured_tet_mesh({.size = {40, 10, 1.6}, .cells = {20, 5, 2}});
         std::vector<planner::StressTensor> stress(mesh.tet_count(), planner::StressTensor::Zero());
         for (auto& s : stress) s(0, 0) = 30.0;
         fibrecell::test::write_vtk_file(dir_ / "jobs/bar.vtk", mesh, {.stress = &stress});
