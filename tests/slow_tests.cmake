@@ -5,7 +5,6 @@
 # directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
 # them again); a test missing here only starts later.
 set(fibrecell_slow_tests
-    "PrintPositionTest.ASmallJobRunsTheExactBoardLogAndCutsAndExtrudesWhereItShould=29"
     "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=22"
     "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=15"
     "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=22"

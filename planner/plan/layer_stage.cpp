@@ -174,7 +174,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 r = fit_budget(
                     zigzag_at, [](const FibreLayerPaths& p) { return fibre_length(p.paths); },
                     job.planner.fibre_budget.metres_per_layer * 1000.0, 1.0 / 32, 1.0, 1.0,
-                    *w.budget);
+                    *w.budget, KnobShape::proportional);
             } else {
                 r = zigzag_at(1.0);
             }

@@ -59,6 +59,34 @@ TEST(FitBudget, FindsTheKnobOfARisingLengthWithinFivePercent) {
     EXPECT_LE(plans, 10);
 }
 
+// The baseline's fibre: rings round the outline, then zigzag in proportion to its density. Aimed
+// along the line, one step meets what halving the bracket takes several for; on the step curve
+// above it still meets within the tries.
+TEST(FitBudget, AProportionalKnobIsMetInOneStepAfterTheBracket) {
+    const auto plans_for = [](KnobShape shape) {
+        int plans = 0;
+        const auto plan = [&](double knob) {
+            ++plans;
+            return 1800 + 6400 * knob;
+        };
+        BudgetFit fit;
+        fit_budget(plan, [](double mm) { return mm; }, 4464, 1.0 / 32, 1, 1, fit, shape);
+        EXPECT_TRUE(fit.met());
+        return plans;
+    };
+    EXPECT_EQ(plans_for(KnobShape::proportional), 3);  // the start, the far end, one step
+    EXPECT_GT(plans_for(KnobShape::uneven), 3);
+    int plans = 0;
+    const auto steps = [&](double knob) {
+        ++plans;
+        return 1000 * std::floor(10 * std::sqrt(knob)) / 10;
+    };
+    BudgetFit fit;
+    fit_budget(steps, [](double mm) { return mm; }, 2000, 1.0 / 16, 16, 1, fit, KnobShape::proportional);
+    EXPECT_TRUE(fit.met());
+    EXPECT_LE(plans, 10);
+}
+
 TEST(FitBudget, AnUnreachableTargetStopsAtTheFullEndAndSaysSo) {
     const auto plan = [](double knob) { return std::min(knob, 4.0) * 100; };
     const auto length = [](double mm) { return mm; };

@@ -1,8 +1,8 @@
 // Where the board acted along the robot's path, end to end in simulation with every driver
 // real (print_cell_fixture.hpp): every cut against its cut point, and the PLA feed's start and
 // stop against each path's ends, from the robot's recorded trajectory and the mock board's times.
-// A test of timing: it runs beside the rest of the suite, as it must pass on a busy machine
-// (docs/sync-engine.md says what load did to it and does now).
+// A test of timing: CTest runs it alone (RUN_SERIAL in tests/CMakeLists.txt), since other tests
+// beside it on a loaded machine delay the pseudo-terminal by up to seconds (docs/sync-engine.md).
 #include "print_cell_fixture.hpp"
 
 #include <cstdio>
@@ -20,11 +20,12 @@ std::string describe(const std::vector<double>& v) {
 
 }  // namespace
 
-// Time scale 2: every real millisecond of the service's latency moves the simulated robot twice
-// as far, a tenth as far as at the other tests' 20.
+// Time scale 3: every real millisecond of the service's latency moves the simulated robot three
+// times as far (0.5 mm at 10 mm/s is 17 ms of real latency). The errors are the same as at 2
+// (docs/sync-engine.md); at 4 the PLA starts came to 0.35 mm.
 class PrintPositionTest : public PrintCellTest {
   protected:
-    PrintPositionTest() { scale_ = 2; }
+    PrintPositionTest() { scale_ = 3; }
 };
 
 TEST_F(PrintPositionTest, ASmallJobRunsTheExactBoardLogAndCutsAndExtrudesWhereItShould) {
