@@ -5,27 +5,28 @@
 # directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
 # them again); a test missing here only starts later.
 set(fibrecell_slow_tests
-    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=22"
-    "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=15"
-    "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=22"
     "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=19"
-    "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=18"
-    "AvrBoardPrint.AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable=18"
-    "ServiceTest.AStopDoesNotWaitForPlanningPastItsGraceAndTheJobPlansAtTheNextStart=11"
-    "ExampleGuarantees.Loop=12"
-    "ServiceTest.TheJobsSettingsReachTheBoardAndTheRobot=10"
-    "ReferenceGuarantees.YogaNew=13"
-    "ReferenceGuarantees.Bunnyhead=10"
-    "ServiceTest.APlanForACellThatChangedIsRefusedUntilItIsReplanned=9"
-    "ServiceTest.AJobIsPlannedAndPrintedWhileTwoClientsWatchIt=9"
-    "ServiceTest.APrintThatFellShortOfItsPlanEndsCompletedWithWarnings=9"
-    "ServiceTest.AJobThatCannotBePlannedFailsWhileAnotherPrints=9"
+    "AvrBoardPrint.AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable=17"
+    "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=15"
+    "ReferenceGuarantees.YogaNew=15"
+    "ExampleGuarantees.Loop=15"
+    "ReferenceGuarantees.Bunnyhead=14"
+    "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=12"
+    "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=12"
     "Gt2560Avr.AnInvertedDirectionBuildFeedsForwardOnlyWhenTheSimulatorIsToldSo=9"
     "Gt2560Avr.CountsStepPulsesIntoMillimetresAtTheFeedRate=8"
     "PrintCellTest.AFourCutJobRunsTheExactBoardLogAtTimeScale20=8"
+    "ServiceTest.TheJobsSettingsReachTheBoardAndTheRobot=7"
     "FibreBudget.ABaselineBudgetTheLayerCannotHoldIsApproachedAndReported=7"
+    "HeaterTest.AHoldKeepsThemHotForTheNextPrintThenTheyGoOff=7"
     "SyncFaultTest.ANewEngineResumesAnInterruptedFibreFeedWithNothingLostOrRepeated=7"
-    "ServiceTest.APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst=7")
+    "ServiceTest.APlanForACellThatChangedIsRefusedUntilItIsReplanned=6"
+    "ServiceTest.APausedJobsHeatersGoOffAfterTheTimeOutAndResumeHeatsFirst=6"
+    "Gt2560Avr.TheHeatingWatchdogHaltsAHotendThatDoesNotHeatUntilAReset=6"
+    "ServiceTest.AJobIsPlannedAndPrintedWhileTwoClientsWatchIt=6"
+    "ServiceTest.ABoardThatRestartsMidPrintIsConnectedAgainByTheResume=6"
+    "ServiceTest.AJobThatCannotBePlannedFailsWhileAnotherPrints=6"
+    "ServiceTest.AServiceThatWasStoppedMidPrintSaysSoWhenItRunsAgain=6")
 # A name that is not a test here (one skipped at configure time) is passed over by CTest;
 # `if(TEST ...)` cannot tell in this file: CTest's scripts do not know it, and it is always false.
 foreach(entry IN LISTS fibrecell_slow_tests)

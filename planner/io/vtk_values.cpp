@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace fibrecell::planner {
 namespace {
@@ -86,64 +87,46 @@ T load_big_endian(const char* p) {
     return value;
 }
 
-// The binary value at p as a double (exact for all but 64-bit integers beyond 2^53).
-double load_as_double(const char* p, VtkScalar t) {
+// Calls f with the binary value at p, loaded as its own C++ type (bit and string: not called;
+// returns false).
+template <class F>
+bool visit_binary(const char* p, VtkScalar t, F&& f) {
     switch (t) {
-        case VtkScalar::int8:
-            return load_big_endian<std::int8_t>(p);
-        case VtkScalar::uint8:
-            return load_big_endian<std::uint8_t>(p);
-        case VtkScalar::int16:
-            return load_big_endian<std::int16_t>(p);
-        case VtkScalar::uint16:
-            return load_big_endian<std::uint16_t>(p);
-        case VtkScalar::int32:
-            return load_big_endian<std::int32_t>(p);
-        case VtkScalar::uint32:
-            return load_big_endian<std::uint32_t>(p);
-        case VtkScalar::int64:
-            return static_cast<double>(load_big_endian<std::int64_t>(p));
-        case VtkScalar::uint64:
-            return static_cast<double>(load_big_endian<std::uint64_t>(p));
-        case VtkScalar::float32:
-            return load_big_endian<float>(p);
-        case VtkScalar::float64:
-            return load_big_endian<double>(p);
+        case VtkScalar::int8: f(load_big_endian<std::int8_t>(p)); return true;
+        case VtkScalar::uint8: f(load_big_endian<std::uint8_t>(p)); return true;
+        case VtkScalar::int16: f(load_big_endian<std::int16_t>(p)); return true;
+        case VtkScalar::uint16: f(load_big_endian<std::uint16_t>(p)); return true;
+        case VtkScalar::int32: f(load_big_endian<std::int32_t>(p)); return true;
+        case VtkScalar::uint32: f(load_big_endian<std::uint32_t>(p)); return true;
+        case VtkScalar::int64: f(load_big_endian<std::int64_t>(p)); return true;
+        case VtkScalar::uint64: f(load_big_endian<std::uint64_t>(p)); return true;
+        case VtkScalar::float32: f(load_big_endian<float>(p)); return true;
+        case VtkScalar::float64: f(load_big_endian<double>(p)); return true;
         case VtkScalar::bit:
-        case VtkScalar::string:
-            break;
+        case VtkScalar::string: break;
     }
-    return 0;
+    return false;
 }
 
+// The binary value at p as a double (exact for all but 64-bit integers beyond 2^53).
+double load_as_double(const char* p, VtkScalar t) {
+    double out = 0;
+    visit_binary(p, t, [&](auto v) { out = static_cast<double>(v); });
+    return out;
+}
+
+// The binary value at p as an index: integer types only (floating types give 0); unsigned 64-bit
+// values above the signed range give -1, out of range for any index anyway.
 long long load_as_integer(const char* p, VtkScalar t) {
-    switch (t) {
-        case VtkScalar::int8:
-            return load_big_endian<std::int8_t>(p);
-        case VtkScalar::uint8:
-            return load_big_endian<std::uint8_t>(p);
-        case VtkScalar::int16:
-            return load_big_endian<std::int16_t>(p);
-        case VtkScalar::uint16:
-            return load_big_endian<std::uint16_t>(p);
-        case VtkScalar::int32:
-            return load_big_endian<std::int32_t>(p);
-        case VtkScalar::uint32:
-            return load_big_endian<std::uint32_t>(p);
-        case VtkScalar::int64:
-            return load_big_endian<std::int64_t>(p);
-        case VtkScalar::uint64: {
-            // Values above the signed range are out of range for any index anyway.
-            const std::uint64_t v = load_big_endian<std::uint64_t>(p);
-            return v > static_cast<std::uint64_t>(INT64_MAX) ? -1 : static_cast<long long>(v);
-        }
-        case VtkScalar::float32:
-        case VtkScalar::float64:
-        case VtkScalar::bit:
-        case VtkScalar::string:
-            break;
-    }
-    return 0;
+    long long out = 0;
+    visit_binary(p, t, [&](auto v) {
+        using V = decltype(v);
+        if constexpr (std::is_same_v<V, std::uint64_t>)
+            out = v > static_cast<std::uint64_t>(INT64_MAX) ? -1 : static_cast<long long>(v);
+        else if constexpr (std::is_integral_v<V>)
+            out = static_cast<long long>(v);
+    });
+    return out;
 }
 
 }  // namespace
