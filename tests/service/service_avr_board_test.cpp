@@ -124,7 +124,14 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
     const auto reset_seen = logged_at(service_->log(), "extruder.link_fault reason=firmware_reset");
     ASSERT_TRUE(reset_seen) << service_->log();
     EXPECT_NE(held.value("reason", "").find("extruder board"), std::string::npos) << held.value("reason", "");
-    EXPECT_NE(held.value("reason", "").find("fed again on resume"), std::string::npos) << held.value("reason", "");
+    // What the board had taken and not run at the reset is fed again on resume, and the reason
+    // says so; a host running late (a busy machine) may have left nothing queued on the board
+    // (seen in CI: the reset between two pieces), and then the reason says nothing of it.
+    const bool taken_back = service_->log().find("sync.feed_lost_in_reset") != std::string::npos;
+    std::printf("at the reset the board %s\n",
+                taken_back ? "had feed it had taken and not run" : "had nothing queued");
+    EXPECT_EQ(held.value("reason", "").find("fed again on resume") != std::string::npos, taken_back)
+        << held.value("reason", "");
     ASSERT_EQ(c.call("job.resume", {{"job", id}}).value("state", ""), "printing") << service_->log();
     const json done = wait_for_state(c, id, "completed", 600s);
     ASSERT_TRUE(printed(done)) << done.dump(2) << service_->log();
