@@ -87,25 +87,23 @@ T load_big_endian(const char* p) {
     return value;
 }
 
-// Calls f with the binary value at p, loaded as its own C++ type (bit and string: not called;
-// returns false).
+// Calls f with the binary value at p, loaded as its own C++ type (bit and string: not called).
 template <class F>
-bool visit_binary(const char* p, VtkScalar t, F&& f) {
+void visit_binary(const char* p, VtkScalar t, F&& f) {
     switch (t) {
-        case VtkScalar::int8: f(load_big_endian<std::int8_t>(p)); return true;
-        case VtkScalar::uint8: f(load_big_endian<std::uint8_t>(p)); return true;
-        case VtkScalar::int16: f(load_big_endian<std::int16_t>(p)); return true;
-        case VtkScalar::uint16: f(load_big_endian<std::uint16_t>(p)); return true;
-        case VtkScalar::int32: f(load_big_endian<std::int32_t>(p)); return true;
-        case VtkScalar::uint32: f(load_big_endian<std::uint32_t>(p)); return true;
-        case VtkScalar::int64: f(load_big_endian<std::int64_t>(p)); return true;
-        case VtkScalar::uint64: f(load_big_endian<std::uint64_t>(p)); return true;
-        case VtkScalar::float32: f(load_big_endian<float>(p)); return true;
-        case VtkScalar::float64: f(load_big_endian<double>(p)); return true;
+        case VtkScalar::int8: f(load_big_endian<std::int8_t>(p)); return;
+        case VtkScalar::uint8: f(load_big_endian<std::uint8_t>(p)); return;
+        case VtkScalar::int16: f(load_big_endian<std::int16_t>(p)); return;
+        case VtkScalar::uint16: f(load_big_endian<std::uint16_t>(p)); return;
+        case VtkScalar::int32: f(load_big_endian<std::int32_t>(p)); return;
+        case VtkScalar::uint32: f(load_big_endian<std::uint32_t>(p)); return;
+        case VtkScalar::int64: f(load_big_endian<std::int64_t>(p)); return;
+        case VtkScalar::uint64: f(load_big_endian<std::uint64_t>(p)); return;
+        case VtkScalar::float32: f(load_big_endian<float>(p)); return;
+        case VtkScalar::float64: f(load_big_endian<double>(p)); return;
         case VtkScalar::bit:
-        case VtkScalar::string: break;
+        case VtkScalar::string: return;
     }
-    return false;
 }
 
 // The binary value at p as a double (exact for all but 64-bit integers beyond 2^53).
