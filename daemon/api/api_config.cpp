@@ -80,7 +80,7 @@ void load_http(config::Section s, ApiHttpConfig& http) {
 void load_tcp(config::Section s, ApiTcpConfig& tcp) {
     tcp.enabled = s.get_or<bool>("enabled", tcp.enabled);
     tcp.host = ip_address(s, tcp.host);
-    tcp.port = static_cast<std::uint16_t>(s.integer("port", tcp.port, 1, 65535));
+    tcp.port = static_cast<std::uint16_t>(s.integer("port", tcp.port, 0, 65535));
     tcp.auth_timeout = std::chrono::milliseconds(
         s.integer("auth_timeout_ms", static_cast<int>(tcp.auth_timeout.count()), 100, 600000));
     tcp.max_unauthenticated = s.integer("max_unauthenticated", tcp.max_unauthenticated, 1, 10000);

@@ -22,7 +22,7 @@ namespace fibrecell::api {
 struct ApiTcpConfig {
     bool enabled = false;
     std::string host = "127.0.0.1";  // an IP address; loopback unless told otherwise
-    std::uint16_t port = 7420;       // 0 (tests only): an ephemeral port, see ApiServer::tcp_port()
+    std::uint16_t port = 7420;       // 0: an ephemeral port (the tests), see ApiServer::tcp_port()
     std::string token;               // from `token` or the first line of `token_file`
     std::chrono::milliseconds auth_timeout{10000};  // a connection must call server.auth by then
     // Connections still to call server.auth, at most: beyond it the oldest of them is closed

@@ -146,7 +146,7 @@ TEST(ApiConfig, HostPortAndLimitsAreChecked) {
                   .find("api.tcp.host: must be an IP address (127.0.0.1, ::1, 0.0.0.0), got "
                         "'localhost'"),
               std::string::npos);
-    EXPECT_NE(error_of("api: {tcp: {port: 70000}}\n").find("api.tcp.port: must be in [1, 65535]"),
+    EXPECT_NE(error_of("api: {tcp: {port: 70000}}\n").find("api.tcp.port: must be in [0, 65535]"),
               std::string::npos);
     EXPECT_NE(error_of("api: {max_request_bytes: 10}\n")
                   .find("api.max_request_bytes: must be in [1024, 1073741824], got 10"),

@@ -1,7 +1,7 @@
 #pragma once
 // fibrecelld as its users run it, for the service tests: the built binary started as a child on a
 // private state directory and socket (the simulated cell in-process at a high time scale, TCP on
-// an ephemeral loopback port with a token), real API clients, and two small jobs: a 60 x 10 x 1.6 mm
+// an ephemeral loopback port with a token), real API clients, and two small jobs: a 40 x 10 x 1.6 mm
 // bar pulled along x (plans in a second or two, prints in seconds), and the same mesh without
 // stress, which cannot be planned.
 #include "config/base64.hpp"
@@ -16,9 +16,6 @@
 
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 
 #include <algorithm>
 #include <chrono>
@@ -55,19 +52,6 @@ inline std::map<std::int64_t, PlannedEvent> planned_events(const fs::path& progr
         out[row.at(col("sequence")).get<std::int64_t>()] = {
             row.at(col("kind")).get<std::string>(), row.at(col("length_mm")).get<double>()};
     return out;
-}
-
-// A loopback TCP port free right now (the kernel's choice), for the service's TCP listener.
-inline int free_tcp_port() {
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t len = sizeof a;
-    ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-    ::close(fd);
-    return ntohs(a.sin_port);
 }
 
 // When the service logged the first line containing `needle` (its log's local time stamps,
@@ -133,7 +117,7 @@ class ServiceTest : public ::testing::Test {
                          << "robot_io: {stable_reads: 1}\n"
                          << "api:\n  socket: " << socket().string() << "\n"
                          << "  max_request_bytes: 4194304\n"
-                         << "  tcp: {enabled: true, port: " << tcp_port_ << ", token: test-token-0123456789}\n"
+                         << "  tcp: {enabled: true, port: 0, token: test-token-0123456789}\n"
                          << "jobs: {planner_threads: 1}\n"
                          << extra;
         return p;
@@ -190,7 +174,6 @@ class ServiceTest : public ::testing::Test {
     }
 
     TempDir dir_{"service"};
-    int tcp_port_ = free_tcp_port();
     int starts_ = 0;  // each start of the service logs to a file of its own
     std::unique_ptr<ChildProcess> service_;
 };
