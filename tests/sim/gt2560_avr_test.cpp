@@ -26,6 +26,9 @@
 #include <termios.h>
 #include <unistd.h>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_gt2560_avr_test {
+
 using namespace std::chrono_literals;
 using fibrecell::test::PipedProcess;
 using fibrecell::test::TempDir;
@@ -421,3 +424,5 @@ TEST_F(Gt2560Avr, ABadFirmwareFileIsRefusedByName) {
     EXPECT_EQ(text.wait(10s), 1);
     EXPECT_NE(text.read_stderr().find("is not an AVR ELF file"), std::string::npos);
 }
+
+}  // namespace sim_gt2560_avr_test

@@ -9,6 +9,9 @@
 #include <numbers>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_motion_profile_test {
+
 using namespace fibrecell::drivers::sim;
 
 namespace {
@@ -112,3 +115,5 @@ TEST(SpeedProfile, ReorientationBetweenMovesStartsAndEndsAtRest) {
     EXPECT_NEAR(turning.dwell_elapsed_s, 0.2, 1e-12);
     EXPECT_EQ(turning.speed_mm_s, 0);
 }
+
+}  // namespace sim_motion_profile_test

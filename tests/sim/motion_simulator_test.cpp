@@ -19,6 +19,9 @@
 #include <thread>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_motion_simulator_test {
+
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
@@ -512,3 +515,5 @@ TEST_F(MotionSimulatorTest, CatchingUpWithAFastClockStillFiresTriggersInPlace) {
     EXPECT_GE(log.path_of("at 120"), 120 - 1e-6);
     EXPECT_LE(log.path_of("at 120"), 120 + trigger_tolerance_mm);
 }
+
+}  // namespace sim_motion_simulator_test

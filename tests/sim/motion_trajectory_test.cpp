@@ -7,6 +7,9 @@
 #include <chrono>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_motion_trajectory_test {
+
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
 
@@ -58,3 +61,5 @@ TEST(TrajectoryAnalysis, NothingOutsideTheRecording) {
     EXPECT_FALSE(sample_at(trajectory, clock.wall_at(2.0) + 1ms));
     EXPECT_FALSE(sample_at({}, clock.wall_at(1.5)));
 }
+
+}  // namespace sim_motion_trajectory_test

@@ -24,6 +24,9 @@
 #include <thread>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_rapid_task_fcmain_test {
+
 using namespace fibrecell;
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
@@ -296,3 +299,5 @@ TEST_F(FcMainTask, AbortStopsClearsThePathAndReturnsToIdle) {
     EXPECT_LT(written_events().back(), job.program.events.back().sequence);  // the rest never came
     EXPECT_EQ(task.status().state, TaskState::running);
 }
+
+}  // namespace sim_rapid_task_fcmain_test

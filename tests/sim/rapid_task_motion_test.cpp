@@ -23,6 +23,9 @@
 #include <thread>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_rapid_task_motion_test {
+
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
@@ -303,3 +306,5 @@ ENDMODULE
               "Main line 7: StartLoad: no file HOME:/job/Part9.mod (ERR_FILNOTFND)");
     EXPECT_EQ(task.status().loaded, std::vector<std::string>{"Main"});
 }
+
+}  // namespace sim_rapid_task_motion_test

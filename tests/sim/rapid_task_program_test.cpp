@@ -17,6 +17,9 @@
 #include <thread>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_rapid_task_program_test {
+
 using namespace fibrecell::drivers;
 using namespace fibrecell::drivers::sim;
 using namespace std::chrono_literals;
@@ -530,3 +533,5 @@ ENDMODULE
         EXPECT_THROW(task.start(), std::logic_error);
     }
 }
+
+}  // namespace sim_rapid_task_program_test

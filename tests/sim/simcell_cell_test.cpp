@@ -27,6 +27,9 @@
 #include <thread>
 #include <vector>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_simcell_cell_test {
+
 using namespace std::chrono_literals;
 using namespace fibrecell::drivers;
 namespace rws = abb::rws;
@@ -562,3 +565,5 @@ TEST(SimCell, LoadingAModuleWhileRapidRunsIsRefused) {
     r.rws.release_mastership();
     EXPECT_EQ(r.rws.execution_state().state, rws::ExecutionState::running);
 }
+
+}  // namespace sim_simcell_cell_test

@@ -22,6 +22,9 @@
 
 #include <unistd.h>
 
+// Its own namespace: compiled in a batch with the other simulator tests, whose helpers share names.
+namespace sim_simcell_tool_test {
+
 using namespace std::chrono_literals;
 namespace abb = fibrecell::drivers::abb;
 namespace rws = abb::rws;
@@ -110,3 +113,5 @@ TEST(SimCellTool, ABadConfigKeyIsNamedAndTheProgramExits) {
     const std::string err = c.read_stderr();
     EXPECT_NE(err.find("poll_period_ms"), std::string::npos) << err;
 }
+
+}  // namespace sim_simcell_tool_test
