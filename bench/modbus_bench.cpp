@@ -4,7 +4,7 @@
 // seeing the new barrier release. Changes come at random phases relative to the poll, as a robot's
 // events do. Release build; numbers are reported only.
 #include "drivers/abb/modbus/robot_io_link.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -17,6 +17,8 @@
 #include <vector>
 
 using namespace fibrecell::drivers::abb;
+using fibrecell::drivers::sim::RobotIoServer;
+using fibrecell::drivers::sim::ServiceCommands;
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 

@@ -38,13 +38,12 @@ namespace abb = drivers::abb;
 namespace {
 
 abb::PrintProgram fibre_line_program(int lines) {
-    std::vector<planner::ToolpathLayer> layers;
+    std::vector<abb::RobotLayer> layers;
     const int per_layer = 6;
     for (int l = 0; l * per_layer < lines; ++l) {
-        planner::ToolpathLayer ccf{.index = l, .z = 0.85 + 0.05 * l, .head = planner::Head::ccf,
-                                   .thickness = 0.05};
+        abb::RobotLayer ccf{.index = l, .z = 0.85 + 0.05 * l, .nozzle = abb::Nozzle::ccf};
         for (int k = 0; k < per_layer && l * per_layer + k < lines; ++k) {
-            planner::Toolpath fibre{planner::PathRole::fibre, false, {}};
+            abb::RobotPath fibre{false, {}};
             for (int i = 0; i <= 5; ++i) fibre.points.emplace_back(110 + 10.0 * i, 130 + 8.0 * k);
             ccf.paths.push_back(fibre);
         }

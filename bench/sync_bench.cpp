@@ -7,7 +7,7 @@
 // own measurement per kind. Release build; numbers are reported only (target p99 <= 5 ms).
 #include "daemon/sync/sync_engine.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 #include "drivers/sim/mock_gt2560.hpp"
 
 #include <spdlog/spdlog.h>
@@ -103,7 +103,7 @@ int main() {
     drivers::ExtruderController extruder(xc);
     board.submit(extruder.prepare({}, true)).get();
 
-    drivers::abb::RobotIoServer server(drivers::abb::RobotIoMap{});
+    drivers::sim::RobotIoServer server(drivers::abb::RobotIoMap{});
     drivers::abb::RobotIoConfig rc;
     rc.host = server.host();
     rc.port = server.port();

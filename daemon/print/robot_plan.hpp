@@ -22,6 +22,9 @@ struct RobotPlan {
     double seconds = 0;               // program + RAPID generation, wall clock
 };
 
+// The plan's toolpaths as the robot driver takes them: a layer's head is its nozzle.
+std::vector<drivers::abb::RobotLayer> robot_layers(const std::vector<planner::ToolpathLayer>& layers);
+
 // layers: the job's toolpaths (bed frame). Throws drivers::abb::PrintProgramError or
 // RapidWriteError naming the layer, path and point of the first problem (an unreachable target,
 // the idle nozzle too low, a fibre path shorter than the cutter).

@@ -15,29 +15,24 @@
 using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
 using fibrecell::test::signed_tilt_deg;
-using planner::Head;
-using planner::PathRole;
-using planner::Toolpath;
-using planner::ToolpathLayer;
 
 namespace {
 
 using std::numbers::pi;
 
-ToolpathLayer square_layer(int index, double z, double x0 = 140, double y0 = 140,
+RobotLayer square_layer(int index, double z, double x0 = 140, double y0 = 140,
                            double side = 20) {
-    ToolpathLayer l{.index = index, .z = z, .head = Head::pla, .thickness = 0.8};
-    l.paths.push_back({PathRole::perimeter,
-                       true,
+    RobotLayer l{.index = index, .z = z, .nozzle = Nozzle::pla};
+    l.paths.push_back({true,
                        {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}}});
     return l;
 }
 
 // A straight fibre path of `length` mm along +x from (x0, y0), points every `step` mm.
-ToolpathLayer fibre_layer(int index, double z, double length = 100, double step = 10,
+RobotLayer fibre_layer(int index, double z, double length = 100, double step = 10,
                           double x0 = 100, double y0 = 150) {
-    ToolpathLayer l{.index = index, .z = z, .head = Head::ccf, .thickness = 0.05};
-    Toolpath p{PathRole::fibre, false, {}};
+    RobotLayer l{.index = index, .z = z, .nozzle = Nozzle::ccf};
+    RobotPath p{false, {}};
     const int n = static_cast<int>(std::round(length / step));
     for (int i = 0; i <= n; ++i) p.points.emplace_back(x0 + length * i / n, y0);
     l.paths.push_back(p);
@@ -77,7 +72,7 @@ void expect_well_numbered(const PrintProgram& p) {
 TEST(PrintProgram, SquareMovesAndEvents) {
     const RobotCellConfig cell;
     const PrintProgram p = build_print_program({square_layer(0, 0.8)}, cell, {});
-    const ToolpathLayer square = square_layer(0, 0.8);
+    const RobotLayer square = square_layer(0, 0.8);
     const auto& pts = square.paths[0].points;
     // start (joint, above the first point), approach, 4 print moves (closing), final lift.
     ASSERT_EQ(p.moves.size(), 7u);
@@ -147,7 +142,7 @@ TEST(PrintProgram, SquareMovesAndEvents) {
 TEST(PrintProgram, FibrePathCutsTheCutterDistanceBeforeItsEnd) {
     const RobotCellConfig cell;
     // 100 mm, points every 10 mm: the cut at 58 mm falls inside the segment 50..60.
-    const ToolpathLayer l = fibre_layer(0, 0.85);
+    const RobotLayer l = fibre_layer(0, 0.85);
     const PrintProgram p = build_print_program({l}, cell, {.cutter_distance_mm = 42});
     expect_well_numbered(p);
     const auto cuts = events_of(p, EventKind::cut);
@@ -194,7 +189,7 @@ TEST(PrintProgram, CutOnAnExistingPointAndOnAClosedFibrePath) {
     const RobotCellConfig cell;
     // Points every 2 mm: 58 mm is a point; no extra point is inserted.
     {
-        const ToolpathLayer l = fibre_layer(0, 0.85, 100, 2);
+        const RobotLayer l = fibre_layer(0, 0.85, 100, 2);
         RobotCellConfig c = cell;
         c.motion.min_segment_mm = 0;
         c.motion.chord_tolerance_mm = 0;  // keep every point
@@ -207,9 +202,9 @@ TEST(PrintProgram, CutOnAnExistingPointAndOnAClosedFibrePath) {
     // A closed 30 x 30 mm fibre ring: 120 mm around, ends where it started; the cut is 42 mm
     // before that, 78 mm along: (130, 130) -> (160, 130) -> (160, 160) -> (142, 160).
     {
-        ToolpathLayer l{.index = 3, .z = 2.45, .head = Head::ccf, .thickness = 0.05};
+        RobotLayer l{.index = 3, .z = 2.45, .nozzle = Nozzle::ccf};
         l.paths.push_back(
-            {PathRole::fibre_boundary, true, {{130, 130}, {160, 130}, {160, 160}, {130, 160}}});
+            {true, {{130, 130}, {160, 130}, {160, 160}, {130, 160}}});
         const PrintProgram p = build_print_program({l}, cell, {});
         const auto cuts = events_of(p, EventKind::cut);
         ASSERT_EQ(cuts.size(), 1u);
@@ -223,7 +218,7 @@ TEST(PrintProgram, CutOnAnExistingPointAndOnAClosedFibrePath) {
 
 TEST(PrintProgram, HeadSwitchBetweenPlaAndCcfLayers) {
     const RobotCellConfig cell;
-    const std::vector<ToolpathLayer> layers = {square_layer(0, 0.8), fibre_layer(1, 0.85)};
+    const std::vector<RobotLayer> layers = {square_layer(0, 0.8), fibre_layer(1, 0.85)};
     const PrintProgram p = build_print_program(layers, cell, {});
     expect_well_numbered(p);
 
@@ -288,7 +283,7 @@ TEST(PrintProgram, HeadSwitchBetweenPlaAndCcfLayers) {
 TEST(PrintProgram, TravelStaysAboveThePartsCurrentTop) {
     const RobotCellConfig cell;
     // Two PLA paths on layer 0, then layer 1 higher up.
-    ToolpathLayer l0 = square_layer(0, 0.8);
+    RobotLayer l0 = square_layer(0, 0.8);
     l0.paths.push_back(square_layer(0, 0.8, 180, 140).paths[0]);
     const PrintProgram p = build_print_program({l0, square_layer(1, 1.6)}, cell, {});
     double top = 0;
@@ -352,8 +347,8 @@ TEST(PrintProgram, ShortFibrePathIsAnError) {
 
 TEST(PrintProgram, DegeneratePathsAreSkippedWithAWarning) {
     const RobotCellConfig cell;
-    ToolpathLayer l = square_layer(0, 0.8);
-    l.paths.insert(l.paths.begin(), Toolpath{PathRole::infill, false, {{10, 10}, {10, 10}}});
+    RobotLayer l = square_layer(0, 0.8);
+    l.paths.insert(l.paths.begin(), RobotPath{false, {{10, 10}, {10, 10}}});
     const PrintProgram p = build_print_program({l}, cell, {});
     ASSERT_EQ(p.warnings.size(), 1u);
     EXPECT_NE(p.warnings[0].find("layer 0 path 0"), std::string::npos);
@@ -423,8 +418,8 @@ TEST(PrintProgram, MergingKeepsEveryEventPoint) {
     cell.motion.chord_tolerance_mm = 0.05;
     cell.motion.min_segment_mm = 0.3;
     // A 100 mm fibre path sampled every 0.01 mm with noise under the tolerance.
-    ToolpathLayer l{.index = 0, .z = 0.85, .head = Head::ccf, .thickness = 0.05};
-    Toolpath path{PathRole::fibre, false, {}};
+    RobotLayer l{.index = 0, .z = 0.85, .nozzle = Nozzle::ccf};
+    RobotPath path{false, {}};
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> noise(-0.01, 0.01);
     for (int i = 0; i <= 10000; ++i) path.points.emplace_back(100 + i * 0.01, 150 + noise(rng));
@@ -470,7 +465,7 @@ TEST(PrintProgram, MergingKeepsEveryEventPoint) {
 TEST(PrintProgram, NoZeroLengthMoves) {
     const RobotCellConfig cell;
     // Two rings starting at the same point: after the lift the head is already above the start.
-    ToolpathLayer l = square_layer(0, 0.8);
+    RobotLayer l = square_layer(0, 0.8);
     l.paths.push_back(square_layer(0, 0.8, 140, 140, 10).paths[0]);
     const PrintProgram p = build_print_program({l}, cell, {});
     for (std::size_t i = 1; i < p.moves.size(); ++i) {

@@ -26,10 +26,6 @@ using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
 using fibrecell::test::signed_tilt_deg;
 namespace rapid = fibrecell::drivers::abb::rapid;
-using planner::Head;
-using planner::PathRole;
-using planner::Toolpath;
-using planner::ToolpathLayer;
 
 namespace {
 
@@ -38,20 +34,20 @@ using std::numbers::pi;
 // Two layers: a 20 mm PLA square and an infill line, then a CCF layer with a 100 mm fibre, gently
 // curved so that no point merges away (radius 250 mm: 0.05 mm sagitta per 10 mm step), and a
 // closed 30 mm fibre ring.
-std::vector<ToolpathLayer> two_layers() {
-    ToolpathLayer pla{.index = 0, .z = 0.8, .head = Head::pla, .thickness = 0.8};
+std::vector<RobotLayer> two_layers() {
+    RobotLayer pla{.index = 0, .z = 0.8, .nozzle = Nozzle::pla};
     pla.paths.push_back(
-        {PathRole::perimeter, true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
-    pla.paths.push_back({PathRole::infill, false, {{142, 142}, {158, 158}}});
-    ToolpathLayer ccf{.index = 1, .z = 0.85, .head = Head::ccf, .thickness = 0.05};
-    Toolpath line{PathRole::fibre, false, {}};
+        {true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
+    pla.paths.push_back({false, {{142, 142}, {158, 158}}});
+    RobotLayer ccf{.index = 1, .z = 0.85, .nozzle = Nozzle::ccf};
+    RobotPath line{false, {}};
     for (int i = 0; i <= 10; ++i) {
         const double x = 10.0 * i - 50;
         line.points.emplace_back(150 + x, 120 + 0.002 * x * x);
     }
     ccf.paths.push_back(line);
     ccf.paths.push_back(
-        {PathRole::fibre_boundary, true, {{130, 130}, {160, 130}, {160, 160}, {130, 160}}});
+        {true, {{130, 130}, {160, 130}, {160, 160}, {130, 160}}});
     return {pla, ccf};
 }
 
@@ -231,7 +227,7 @@ Eigen::Vector3d tcp_through_arm(const RobotCellConfig& cell, const rapid::MoveTa
 }
 
 // The point `rest` mm of arc length before the end of a toolpath (closed: back at its start).
-Eigen::Vector2d before_end(const Toolpath& p, double rest) {
+Eigen::Vector2d before_end(const RobotPath& p, double rest) {
     std::vector<Eigen::Vector2d> pts = p.points;
     if (p.closed) pts.push_back(pts.front());
     for (std::size_t i = pts.size() - 1; i > 0; --i) {
@@ -243,14 +239,14 @@ Eigen::Vector2d before_end(const Toolpath& p, double rest) {
 }
 
 struct Generated {
-    std::vector<ToolpathLayer> layers;
+    std::vector<RobotLayer> layers;
     PrintProgram program;
     RapidOutput output;
     ReadBack read;
 };
 
 Generated generate(const RobotCellConfig& cell, int max_lines = 0,
-                   std::vector<ToolpathLayer> layers = two_layers()) {
+                   std::vector<RobotLayer> layers = two_layers()) {
     Generated g;
     g.layers = std::move(layers);
     g.program = build_print_program(g.layers, cell, {});
@@ -308,7 +304,7 @@ TEST(RapidWriter, PrintTargetsAreTheToolpathPointsThroughWobjAndTool) {
         const Eigen::Vector3d written = ms[i]->target.robtarget->trans_mm;
         EXPECT_NEAR((through_arm - written).norm(), 0, 1e-6);
         if (pm.role != MoveRole::print || pm.point < 0) continue;
-        const ToolpathLayer& layer = g.layers[static_cast<std::size_t>(pm.layer)];
+        const RobotLayer& layer = g.layers[static_cast<std::size_t>(pm.layer)];
         const Eigen::Vector2d q = layer.paths[static_cast<std::size_t>(pm.path)]
                                       .points[static_cast<std::size_t>(pm.point)];
         const Eigen::Vector3d expected(q.x(), q.y(), layer.z);
@@ -356,7 +352,7 @@ TEST(RapidWriter, CutLiesTheCutterDistanceBeforeTheFibrePathEnd) {
     int cuts = 0;
     for (const ProgramEvent& e : g.program.events) {
         if (e.kind != EventKind::cut) continue;
-        const Toolpath& path =
+        const RobotPath& path =
             g.layers[static_cast<std::size_t>(e.layer)].paths[static_cast<std::size_t>(e.path)];
         long path_end = 0;
         for (const ProgramEvent& f : g.program.events)
@@ -505,7 +501,7 @@ TEST(RapidWriter, HeadSwitchSequenceInTheModules) {
 TEST(RapidWriter, UnreachableTargetNamesThePoint) {
     RobotCellConfig cell;
     cell.bed.translation() = Eigen::Vector3d(700, -150, 100);  // the part 840..860 mm out
-    const std::vector<ToolpathLayer> layers = two_layers();
+    const std::vector<RobotLayer> layers = two_layers();
     const PrintProgram p = build_print_program(layers, cell, {});
     try {
         write_rapid_chunks(p, cell, {});
@@ -520,8 +516,8 @@ TEST(RapidWriter, UnreachableTargetNamesThePoint) {
 
 TEST(RapidWriter, AStretchLongerThanAChunkIsAnError) {
     const RobotCellConfig cell;
-    ToolpathLayer l{.index = 0, .z = 0.8, .head = Head::pla, .thickness = 0.8};
-    Toolpath zig{PathRole::infill, false, {}};
+    RobotLayer l{.index = 0, .z = 0.8, .nozzle = Nozzle::pla};
+    RobotPath zig{false, {}};
     for (int i = 0; i < 80; ++i) zig.points.emplace_back(100 + (i % 2) * 20, 100 + i);
     l.paths.push_back(zig);
     const PrintProgram p = build_print_program({l}, cell, {});

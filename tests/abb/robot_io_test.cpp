@@ -5,7 +5,7 @@
 #include "drivers/abb/modbus/modbus_read_plan.hpp"
 #include "drivers/abb/modbus/robot_io_config.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 
 #include "config/yaml_section.hpp"
 #include "tests/support/eventually.hpp"
@@ -21,6 +21,9 @@
 
 using namespace fibrecell;
 using namespace fibrecell::drivers::abb;
+using fibrecell::drivers::sim::RobotIoServer;
+using fibrecell::drivers::sim::RobotIoServerOptions;
+using fibrecell::drivers::sim::ServiceCommands;
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 using fibrecell::test::eventually;

@@ -18,14 +18,15 @@
 #include <thread>
 
 #include "drivers/abb/rws/digest.hpp"
-#include "drivers/abb/rws/in_memory_controller.hpp"
+#include "drivers/sim/rws/in_memory_controller.hpp"
 #include "drivers/abb/rws/rws_client.hpp"
-#include "drivers/abb/rws/rws_routes.hpp"
-#include "drivers/abb/rws/rws_server.hpp"
+#include "drivers/sim/rws/rws_routes.hpp"
+#include "drivers/sim/rws/rws_server.hpp"
 #include "drivers/abb/rws/url.hpp"
 #include "tests/support/eventually.hpp"
 
 using namespace fibrecell::drivers::abb::rws;
+using namespace fibrecell::drivers::sim::rws;  // the simulated controller's side
 using namespace std::chrono_literals;
 using fibrecell::test::eventually;
 

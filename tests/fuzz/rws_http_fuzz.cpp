@@ -5,9 +5,9 @@
 // status is fine) or Beast rejecting the bytes is the contract; an exception escaping route() or
 // a reader, a crash or a sanitizer report is a finding.
 #include "drivers/abb/rws/digest.hpp"
-#include "drivers/abb/rws/in_memory_controller.hpp"
+#include "drivers/sim/rws/in_memory_controller.hpp"
 #include "drivers/abb/rws/rws_json.hpp"
-#include "drivers/abb/rws/rws_routes.hpp"
+#include "drivers/sim/rws/rws_routes.hpp"
 
 #include <boost/asio/buffer.hpp>
 #include <boost/beast/http.hpp>
@@ -22,6 +22,7 @@
 namespace {
 
 namespace rws = fibrecell::drivers::abb::rws;
+namespace sim_rws = fibrecell::drivers::sim::rws;  // the controller's side
 namespace beast = boost::beast;
 namespace http = beast::http;
 
@@ -37,7 +38,7 @@ constexpr std::string_view kDataModule =
     "ENDMODULE\n";
 
 // This client holds mastership, so that every route gets past the check.
-class HeldMastership : public rws::MastershipGate {
+class HeldMastership : public sim_rws::MastershipGate {
   public:
     bool held_by_caller() const override { return true; }
     bool held_elsewhere() const override { return false; }
@@ -66,7 +67,7 @@ std::optional<http::message<isRequest, http::string_body>> next_message(std::str
 }
 
 void serve_requests(std::string_view wire) {
-    rws::InMemoryController controller;
+    sim_rws::InMemoryController controller;
     controller.write_file("FcData.mod", std::string(kDataModule));
     controller.load_module("FcData.mod", false);
     rws::DigestVerifier digest({});
@@ -77,7 +78,7 @@ void serve_requests(std::string_view wire) {
         const std::string method(req->method_string());
         const std::string target(req->target());
         digest.verify(sv((*req)[http::field::authorization]), method, target);
-        rws::route({method, target, req->body(), sv((*req)[http::field::host])}, controller,
+        sim_rws::route({method, target, req->body(), sv((*req)[http::field::host])}, controller,
                    mastership, "T_ROB1");
     }
 }

@@ -32,18 +32,18 @@ using drivers::abb::EventKind;
 constexpr double print_time_scale = 20;
 constexpr double pla_speed = 12, ccf_speed = 5;
 
-inline planner::ToolpathLayer pla_square(int index, double z) {
-    planner::ToolpathLayer pla{.index = index, .z = z, .head = planner::Head::pla, .thickness = 0.8};
+inline abb::RobotLayer pla_square(int index, double z) {
+    abb::RobotLayer pla{.index = index, .z = z, .nozzle = abb::Nozzle::pla};
     pla.paths.push_back(
-        {planner::PathRole::perimeter, true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
+        {true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
     return pla;
 }
 
 // `count` straight fibre paths of `length` mm along x, 10 mm apart.
-inline planner::ToolpathLayer fibre_lines(int index, double z, int count, int length = 100) {
-    planner::ToolpathLayer ccf{.index = index, .z = z, .head = planner::Head::ccf, .thickness = 0.05};
+inline abb::RobotLayer fibre_lines(int index, double z, int count, int length = 100) {
+    abb::RobotLayer ccf{.index = index, .z = z, .nozzle = abb::Nozzle::ccf};
     for (int k = 0; k < count; ++k) {
-        planner::Toolpath fibre{planner::PathRole::fibre, false, {}};
+        abb::RobotPath fibre{false, {}};
         for (int i = 0; i <= length / 10; ++i) fibre.points.emplace_back(100 + 10.0 * i, 145 + 10.0 * k);
         ccf.paths.push_back(fibre);
     }
@@ -57,7 +57,7 @@ inline std::int64_t first_of(const abb::PrintProgram& program, EventKind kind) {
     return 0;
 }
 
-inline abb::PrintProgram make_program(const std::vector<planner::ToolpathLayer>& layers,
+inline abb::PrintProgram make_program(const std::vector<abb::RobotLayer>& layers,
                                      double ccf_speed_mm_s = ccf_speed) {
     return abb::build_print_program(layers, abb::RobotCellConfig{},
                                     {.pla_speed_mm_s = pla_speed, .ccf_speed_mm_s = ccf_speed_mm_s,

@@ -11,21 +11,19 @@
 using namespace fibrecell;
 using drivers::abb::EventKind;
 using drivers::abb::MoveRole;
-using planner::Head;
-using planner::PathRole;
-using planner::ToolpathLayer;
+using drivers::abb::RobotLayer;
 
 namespace {
 
 class ReentryProgramTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        ToolpathLayer pla{.index = 0, .z = 0.8, .head = Head::pla, .thickness = 0.8};
+        RobotLayer pla{.index = 0, .z = 0.8, .nozzle = drivers::abb::Nozzle::pla};
         pla.paths.push_back(
-            {PathRole::perimeter, true, {{120, 140}, {140, 140}, {140, 160}, {120, 160}}});
-        ToolpathLayer ccf{.index = 1, .z = 0.85, .head = Head::ccf, .thickness = 0.05};
+            {true, {{120, 140}, {140, 140}, {140, 160}, {120, 160}}});
+        RobotLayer ccf{.index = 1, .z = 0.85, .nozzle = drivers::abb::Nozzle::ccf};
         for (double y : {145.0, 155.0}) {
-            planner::Toolpath p{PathRole::fibre, false, {}};
+            drivers::abb::RobotPath p{false, {}};
             for (int i = 0; i <= 10; ++i) p.points.emplace_back(100 + 10 * i, y);
             ccf.paths.push_back(p);
         }

@@ -14,24 +14,22 @@ using namespace fibrecell::daemon::print;
 using drivers::abb::EventKind;
 using drivers::abb::MoveRole;
 using drivers::abb::Nozzle;
-using planner::Head;
-using planner::PathRole;
-using planner::ToolpathLayer;
+using drivers::abb::RobotLayer;
 
 namespace {
 
-ToolpathLayer pla_layer(int index, double z, std::vector<double> x0s) {
-    ToolpathLayer l{.index = index, .z = z, .head = Head::pla, .thickness = 0.8};
+RobotLayer pla_layer(int index, double z, std::vector<double> x0s) {
+    RobotLayer l{.index = index, .z = z, .nozzle = drivers::abb::Nozzle::pla};
     for (double x0 : x0s)
         l.paths.push_back(
-            {PathRole::perimeter, true, {{x0, 140}, {x0 + 20, 140}, {x0 + 20, 160}, {x0, 160}}});
+            {true, {{x0, 140}, {x0 + 20, 140}, {x0 + 20, 160}, {x0, 160}}});
     return l;
 }
 
-ToolpathLayer fibre_layer(int index, double z, std::vector<double> ys) {
-    ToolpathLayer l{.index = index, .z = z, .head = Head::ccf, .thickness = 0.05};
+RobotLayer fibre_layer(int index, double z, std::vector<double> ys) {
+    RobotLayer l{.index = index, .z = z, .nozzle = drivers::abb::Nozzle::ccf};
     for (double y : ys) {
-        planner::Toolpath p{PathRole::fibre, false, {}};
+        drivers::abb::RobotPath p{false, {}};
         for (int i = 0; i <= 10; ++i) p.points.emplace_back(100 + 10 * i, y);
         l.paths.push_back(p);
     }
@@ -41,7 +39,7 @@ ToolpathLayer fibre_layer(int index, double z, std::vector<double> ys) {
 class ResumePointTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        const std::vector<ToolpathLayer> layers = {pla_layer(0, 0.8, {120, 160}),
+        const std::vector<RobotLayer> layers = {pla_layer(0, 0.8, {120, 160}),
                                                    fibre_layer(1, 0.85, {145, 155}),
                                                    pla_layer(2, 1.65, {140})};
         program_ = drivers::abb::build_print_program(layers, drivers::abb::RobotCellConfig{});

@@ -58,12 +58,11 @@ struct Job {
 };
 
 Job two_chunk_job() {
-    using planner::PathRole;
-    planner::ToolpathLayer pla{.index = 0, .z = 0.8, .head = planner::Head::pla, .thickness = 0.8};
+    abb::RobotLayer pla{.index = 0, .z = 0.8, .nozzle = abb::Nozzle::pla};
     pla.paths.push_back(
-        {PathRole::perimeter, true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
-    planner::ToolpathLayer ccf{.index = 1, .z = 0.85, .head = planner::Head::ccf, .thickness = 0.05};
-    ccf.paths.push_back({PathRole::fibre, false, {{120, 150}, {150, 150}, {180, 150}}});
+        {true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
+    abb::RobotLayer ccf{.index = 1, .z = 0.85, .nozzle = abb::Nozzle::ccf};
+    ccf.paths.push_back({false, {{120, 150}, {150, 150}, {180, 150}}});
     Job job;
     job.program = abb::build_print_program(
         {pla, ccf}, cell, {.pla_speed_mm_s = 30, .ccf_speed_mm_s = 20, .pla_travel_speed_mm_s = 250, .ccf_travel_speed_mm_s = 250});

@@ -38,10 +38,8 @@ using abb::FcMainControl;
 using abb::FcRunRequest;
 using abb::FcState;
 using abb::FcStatus;
-using fibrecell::planner::Head;
-using fibrecell::planner::PathRole;
-using fibrecell::planner::Toolpath;
-using fibrecell::planner::ToolpathLayer;
+using abb::RobotLayer;
+using abb::RobotPath;
 using Clock = std::chrono::steady_clock;
 using fibrecell::test::eventually;
 
@@ -57,12 +55,12 @@ std::string fc_main_file() {
 
 // A 20 mm PLA square, then a CCF layer with a 60 mm fibre: a head-switch barrier before each layer,
 // a threading barrier at the fibre start, extrusion, cut and path-end events.
-std::vector<ToolpathLayer> small_job() {
-    ToolpathLayer pla{.index = 0, .z = 0.8, .head = Head::pla, .thickness = 0.8};
+std::vector<RobotLayer> small_job() {
+    RobotLayer pla{.index = 0, .z = 0.8, .nozzle = abb::Nozzle::pla};
     pla.paths.push_back(
-        {PathRole::perimeter, true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
-    ToolpathLayer ccf{.index = 1, .z = 0.85, .head = Head::ccf, .thickness = 0.05};
-    ccf.paths.push_back({PathRole::fibre, false, {{120, 150}, {150, 150}, {180, 150}}});
+        {true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
+    RobotLayer ccf{.index = 1, .z = 0.85, .nozzle = abb::Nozzle::ccf};
+    ccf.paths.push_back({false, {{120, 150}, {150, 150}, {180, 150}}});
     return {pla, ccf};
 }
 

@@ -6,7 +6,7 @@
 // expected board log is built here from a second ExtruderController and the metering rule.
 #include "daemon/sync/sync_engine.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 #include "drivers/abb/program/print_program.hpp"
 #include "drivers/extruder/extruder_controller.hpp"
 #include "drivers/marlin/marlin_link.hpp"
@@ -37,11 +37,11 @@ constexpr double time_scale = 20;  // the mock board and the pacing: 20 simulate
 
 // Layer 0: a closed 20 mm PLA square (80 mm); layer 1: a straight 100 mm fibre path.
 inline drivers::abb::PrintProgram two_layer_program() {
-    using planner::PathRole;
-    planner::ToolpathLayer pla{.index = 0, .z = 0.8, .head = planner::Head::pla, .thickness = 0.8};
-    pla.paths.push_back({PathRole::perimeter, true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
-    planner::ToolpathLayer ccf{.index = 1, .z = 0.85, .head = planner::Head::ccf, .thickness = 0.05};
-    planner::Toolpath fibre{PathRole::fibre, false, {}};
+    namespace abb = drivers::abb;
+    abb::RobotLayer pla{.index = 0, .z = 0.8, .nozzle = abb::Nozzle::pla};
+    pla.paths.push_back({true, {{140, 140}, {160, 140}, {160, 160}, {140, 160}}});
+    abb::RobotLayer ccf{.index = 1, .z = 0.85, .nozzle = abb::Nozzle::ccf};
+    abb::RobotPath fibre{false, {}};
     for (int i = 0; i <= 10; ++i) fibre.points.emplace_back(100 + 10.0 * i, 150);
     ccf.paths.push_back(fibre);
     return drivers::abb::build_print_program(
@@ -84,9 +84,9 @@ class SyncCellTest : public ::testing::Test {
             ASSERT_TRUE(done.get().ok());
         }
 
-        drivers::abb::RobotIoServerOptions so;
+        drivers::sim::RobotIoServerOptions so;
         so.robot_heartbeat_period = 20ms;
-        server_ = std::make_unique<drivers::abb::RobotIoServer>(drivers::abb::RobotIoMap{}, so);
+        server_ = std::make_unique<drivers::sim::RobotIoServer>(drivers::abb::RobotIoMap{}, so);
         drivers::abb::RobotIoConfig rc;
         rc.host = server_->host();
         rc.port = server_->port();
@@ -227,7 +227,7 @@ class SyncCellTest : public ::testing::Test {
     TempDir dir_{"sync"};  // before the devices: the board's port link in it outlives the mock
     std::unique_ptr<drivers::sim::MockGt2560> mock_;
     drivers::marlin::MarlinLink board_;
-    std::unique_ptr<drivers::abb::RobotIoServer> server_;
+    std::unique_ptr<drivers::sim::RobotIoServer> server_;
     std::unique_ptr<drivers::abb::RobotIoLink> robot_;
     drivers::abb::PrintProgram program_ = two_layer_program();
     drivers::ExtruderController extruder_{drivers::ExtruderConfig{}};

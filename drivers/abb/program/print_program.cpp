@@ -11,9 +11,6 @@
 namespace fibrecell::drivers::abb {
 namespace {
 
-using planner::Toolpath;
-using planner::ToolpathLayer;
-
 constexpr std::size_t no_index = std::numeric_limits<std::size_t>::max();
 constexpr int turn_samples = 16;  // clearance checks along a head turn
 
@@ -21,7 +18,7 @@ constexpr int turn_samples = 16;  // clearance checks along a head turn
 // a fibre path is inserted as a point of its own.
 struct PreparedPath {
     std::vector<Eigen::Vector2d> points;
-    std::vector<int> source;  // index into Toolpath::points; -1 for the inserted cut point
+    std::vector<int> source;  // index into RobotPath::points; -1 for the inserted cut point
     double length_mm = 0;
     std::size_t cut = no_index;  // index into points
 };
@@ -55,7 +52,7 @@ class Builder {
             orientation_[index(n)] = print_orientation(cell.head, n);
     }
 
-    void add_layer(const ToolpathLayer& layer) {
+    void add_layer(const RobotLayer& layer) {
         if (!std::isfinite(layer.z)) {
             issue(layer.index, -1, -1, "the layer height is not a finite number");
             return;
@@ -94,8 +91,8 @@ class Builder {
 
     // Points, closing point, cut point; false (with a warning or an issue) when there is
     // nothing to print.
-    bool prepare(const ToolpathLayer& layer, int p, PreparedPath& out) {
-        const Toolpath& path = layer.paths[p];
+    bool prepare(const RobotLayer& layer, int p, PreparedPath& out) {
+        const RobotPath& path = layer.paths[p];
         program_.stats.points_in += path.points.size();
         for (std::size_t i = 0; i < path.points.size(); ++i)
             if (!path.points[i].allFinite()) {
@@ -117,7 +114,7 @@ class Builder {
             out = {};
             return false;
         }
-        if (layer.head == planner::Head::ccf) {
+        if (layer.nozzle == Nozzle::ccf) {
             const double d = options_.cutter_distance_mm;
             const double s_cut = out.length_mm - d;
             if (s_cut < -1e-9) {
@@ -306,8 +303,8 @@ class Builder {
                       ", less than the clearance " + mm(clearance));
     }
 
-    void print_path(const ToolpathLayer& layer, int p, const PreparedPath& path, bool last) {
-        const Nozzle n = layer.head == planner::Head::pla ? Nozzle::pla : Nozzle::ccf;
+    void print_path(const RobotLayer& layer, int p, const PreparedPath& path, bool last) {
+        const Nozzle n = layer.nozzle;
         const bool fibre = n == Nozzle::ccf;
         const double speed = fibre ? options_.ccf_speed_mm_s : options_.pla_speed_mm_s;
         const double z = layer.z;
@@ -505,10 +502,10 @@ std::string_view to_string(EventKind k) {
 PrintProgramError::PrintProgramError(std::vector<ProgramIssue> issues)
     : std::runtime_error(join_messages(issues)), issues_(std::move(issues)) {}
 
-PrintProgram build_print_program(const std::vector<planner::ToolpathLayer>& layers,
-                                 const RobotCellConfig& cell, const ProgramOptions& options) {
+PrintProgram build_print_program(const std::vector<RobotLayer>& layers, const RobotCellConfig& cell,
+                                 const ProgramOptions& options) {
     Builder b(cell, options);
-    for (const planner::ToolpathLayer& layer : layers) b.add_layer(layer);
+    for (const RobotLayer& layer : layers) b.add_layer(layer);
     return b.finish();
 }
 

@@ -6,11 +6,11 @@
 // sequence number (what the robot puts on the event group output). docs/robot-program.md.
 //
 //   RobotCellConfig cell = load_robot_config(section);
-//   PrintProgram p = build_print_program(layers, cell, {.pla_speed_mm_s = 12, ...});
+//   PrintProgram p = build_print_program(layers, cell, {.pla_speed_mm_s = 12, ...});  // RobotLayer
 //   RapidOutput r = write_rapid_chunks(p, cell, {});
 
 #include "drivers/abb/cell/robot_config.hpp"
-#include "planner/toolpaths/toolpath.hpp"
+#include "drivers/abb/program/robot_path.hpp"
 
 #include <Eigen/Geometry>
 
@@ -62,8 +62,8 @@ struct ProgramMove {
     bool fine = false;            // stop point; otherwise fly-by with zone_mm
     double zone_mm = 0;
     double length_mm = 0;  // straight-line TCP travel of the move
-    // The toolpath the move belongs to (ToolpathLayer::index and the path's index in its layer)
-    // and the point it ends at (index into Toolpath::points; the closing move of a closed path
+    // The path the move belongs to (RobotLayer::index and the path's index in its layer)
+    // and the point it ends at (index into RobotPath::points; the closing move of a closed path
     // ends at 0). -1 where none applies; point -1 on a print move = the inserted cut point.
     int layer = -1;
     int path = -1;
@@ -116,7 +116,7 @@ struct ProgramOptions {
     double head_switch_s = 0;        // duration estimate per head switch (tool change, heating)
 };
 
-// A planning error: where (ToolpathLayer::index, path, point; -1 where none) and what.
+// A planning error: where (RobotLayer::index, path, point; -1 where none) and what.
 struct ProgramIssue {
     int layer = -1;
     int path = -1;
@@ -133,12 +133,11 @@ class PrintProgramError : public std::runtime_error {
     std::vector<ProgramIssue> issues_;
 };
 
-// Layers in print order, points in the bed frame [mm] (toolpaths.json). The layer's head decides
-// the nozzle and the path kind: every path of a CCF layer is a fibre path (threading barrier,
-// cut, path end). Throws PrintProgramError listing every problem: the idle nozzle tip closer than
+// Layers in print order, points in the bed frame [mm]. The layer's nozzle decides the path kind:
+// every path of a CCF layer is a fibre path (threading barrier, cut, path end). Throws PrintProgramError listing every problem: the idle nozzle tip closer than
 // the clearance to the part's current top (highest z printed so far) at a print move or a head
 // turn, a fibre path shorter than the cutter distance, a non-finite coordinate.
-PrintProgram build_print_program(const std::vector<planner::ToolpathLayer>& layers,
-                                 const RobotCellConfig& cell, const ProgramOptions& options = {});
+PrintProgram build_print_program(const std::vector<RobotLayer>& layers, const RobotCellConfig& cell,
+                                 const ProgramOptions& options = {});
 
 }  // namespace fibrecell::drivers::abb

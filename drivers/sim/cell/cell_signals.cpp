@@ -40,10 +40,10 @@ CellSignals::CellSignals(abb::RobotSignals names, std::chrono::milliseconds hear
     }
 }
 
-void CellSignals::attach(abb::RobotIoServer& coupler) {
+void CellSignals::attach(RobotIoServer& coupler) {
     std::lock_guard lock(values_mu_);
     coupler_ = &coupler;
-    const abb::ServiceCommands c = coupler.commands();
+    const ServiceCommands c = coupler.commands();
     values_[Id::release] = c.release;
     values_[Id::pause] = c.pause ? 1 : 0;
     values_[Id::abort] = c.abort ? 1 : 0;
@@ -83,7 +83,7 @@ void CellSignals::set_input(Id id, double value,
     changes.emplace_back(name, value);
 }
 
-void CellSignals::commands_changed(const abb::ServiceCommands& c) {
+void CellSignals::commands_changed(const ServiceCommands& c) {
     std::lock_guard forward(forward_mu_);
     std::vector<std::pair<std::string, double>> changes;
     {

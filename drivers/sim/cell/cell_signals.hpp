@@ -15,7 +15,7 @@
 // the last `max_history` of them).
 
 #include "drivers/abb/cell/robot_config.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -40,7 +40,7 @@ class CellSignals {
 
     // Connects the coupler (not owned; it must outlive detach()) and takes its current commands
     // as the input values.
-    void attach(abb::RobotIoServer& coupler);
+    void attach(RobotIoServer& coupler);
     // Where input changes go (signal name as configured, new value). Called on the coupler's
     // thread, never while this object's locks are held by the caller.
     void on_input(std::function<void(const std::string& signal, double value)> f);
@@ -48,7 +48,7 @@ class CellSignals {
     void detach();
 
     // The coupler's commands changed (RobotIoServer::on_commands).
-    void commands_changed(const abb::ServiceCommands& c);
+    void commands_changed(const ServiceCommands& c);
 
     // TaskIo: the value of any of the eight signals; std::out_of_range for another name.
     double read(const std::string& signal) const;
@@ -72,7 +72,7 @@ class CellSignals {
     std::map<Id, double> values_;
     std::deque<SignalWrite> history_;
     static constexpr std::size_t max_history = 100'000;
-    abb::RobotIoServer* coupler_ = nullptr;
+    RobotIoServer* coupler_ = nullptr;
     std::chrono::steady_clock::time_point last_hb_edge_{};
 
     // Held while an input change is forwarded, so that detach() can wait for it.

@@ -9,7 +9,6 @@
 
 namespace fibrecell::drivers::sim {
 
-namespace rws = abb::rws;
 
 namespace {
 
@@ -63,15 +62,15 @@ SimCell::SimCell(SimCellOptions options)
         controller_->attach(task_.get());
 
         // The robot heartbeat comes from FcMain (doFcHeartbeat), not from the coupler's timer.
-        coupler_ = std::make_unique<abb::RobotIoServer>(
+        coupler_ = std::make_unique<RobotIoServer>(
             options_.io_map,
-            abb::RobotIoServerOptions{.bind_address = options_.io_address,
+            RobotIoServerOptions{.bind_address = options_.io_address,
                                       .port = options_.io_port,
                                       .robot_heartbeat_period = std::chrono::milliseconds(0)});
         signals_.attach(*coupler_);
         signals_.on_input([this](const std::string& s, double v) { task_->signal_changed(s, v); });
         coupler_->on_commands(
-            [this](const abb::ServiceCommands& cmds) { signals_.commands_changed(cmds); });
+            [this](const ServiceCommands& cmds) { signals_.commands_changed(cmds); });
 
         load_main_module();
         rws_ = std::make_unique<rws::RwsServer>(controller_, options_.rws);

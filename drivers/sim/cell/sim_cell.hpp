@@ -13,8 +13,8 @@
 
 #include "drivers/abb/cell/robot_config.hpp"
 #include "drivers/abb/modbus/robot_io_config.hpp"
-#include "drivers/abb/modbus/robot_io_server.hpp"
-#include "drivers/abb/rws/rws_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
+#include "drivers/sim/rws/rws_server.hpp"
 #include "drivers/sim/cell/cell_signals.hpp"
 #include "drivers/sim/cell/sim_controller.hpp"
 #include "drivers/sim/cell/task_log.hpp"
@@ -34,7 +34,7 @@ namespace fibrecell::drivers::sim {
 struct SimCellOptions {
     double time_scale = 1;  // simulated seconds per real second
     // Address, port (0: ephemeral), user and password of the RWS server.
-    abb::rws::RwsServerConfig rws;
+    rws::RwsServerConfig rws;
     // The coupler's register map (the cell YAML's robot_io.map) and where it listens.
     abb::RobotIoMap io_map;
     std::string io_address = "127.0.0.1";
@@ -94,8 +94,8 @@ class SimCell {
 
     // The parts, for what the knobs above do not cover.
     SimController& controller() { return *controller_; }
-    abb::RobotIoServer& coupler() { return *coupler_; }
-    abb::rws::RwsServer& rws_server() { return *rws_; }
+    RobotIoServer& coupler() { return *coupler_; }
+    rws::RwsServer& rws_server() { return *rws_; }
     MotionSimulator& motion() { return *motion_; }
     RapidTask& task() { return *task_; }
 
@@ -110,8 +110,8 @@ class SimCell {
     CellSignals signals_;
     std::shared_ptr<SimController> controller_;
     std::unique_ptr<RapidTask> task_;
-    std::unique_ptr<abb::RobotIoServer> coupler_;
-    std::unique_ptr<abb::rws::RwsServer> rws_;
+    std::unique_ptr<RobotIoServer> coupler_;
+    std::unique_ptr<rws::RwsServer> rws_;
 };
 
 }  // namespace fibrecell::drivers::sim

@@ -11,7 +11,6 @@
 
 namespace fibrecell::drivers::sim {
 
-namespace rws = abb::rws;
 namespace rapid = abb::rapid;
 
 namespace {

@@ -13,7 +13,7 @@
 //     error is the last entry of the task's build log (GET .../program/builderror), with module
 //     and line. A reset of the program pointer clears it.
 
-#include "drivers/abb/rws/in_memory_controller.hpp"
+#include "drivers/sim/rws/in_memory_controller.hpp"
 #include "drivers/sim/rapid_exec/rapid_task.hpp"
 
 #include <string>
@@ -26,7 +26,7 @@ struct SimControllerOptions {
     std::string hb_timeout_symbol = "nFcHbTimeout";  // num data scaled as above, in any module
 };
 
-class SimController : public abb::rws::InMemoryController {
+class SimController : public rws::InMemoryController {
   public:
     explicit SimController(SimControllerOptions options);
 

@@ -19,9 +19,9 @@
 #include <memory>
 #include <string>
 
-#include "drivers/abb/rws/rws_backend.hpp"
+#include "drivers/sim/rws/rws_backend.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
 
 struct RwsServerConfig {
     std::string address = "127.0.0.1";
@@ -73,4 +73,4 @@ class RwsServer {
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

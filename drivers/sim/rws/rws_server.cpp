@@ -1,4 +1,4 @@
-#include "drivers/abb/rws/rws_server.hpp"
+#include "drivers/sim/rws/rws_server.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -15,9 +15,14 @@
 
 #include "drivers/abb/rws/digest.hpp"
 #include "drivers/abb/rws/rws_json.hpp"
-#include "drivers/abb/rws/rws_routes.hpp"
+#include "drivers/sim/rws/rws_routes.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
+
+// Digest authentication and the JSON shape, shared with the client (drivers/abb/rws).
+namespace json = abb::rws::json;
+using abb::rws::DigestVerifier;
+using abb::rws::random_hex;
 
 namespace asio = boost::asio;
 namespace beast = boost::beast;
@@ -392,4 +397,4 @@ RwsServerStats RwsServer::stats() const {
     return impl_->core.stats;
 }
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

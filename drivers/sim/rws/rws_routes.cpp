@@ -1,4 +1,4 @@
-#include "drivers/abb/rws/rws_routes.hpp"
+#include "drivers/sim/rws/rws_routes.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,14 @@
 #include "drivers/abb/rws/rws_json.hpp"
 #include "drivers/abb/rws/url.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
+
+// The wire's forms, shared with the client (drivers/abb/rws).
+namespace json = abb::rws::json;
+using abb::rws::form_value;
+using abb::rws::FormFields;
+using abb::rws::parse_form;
+using abb::rws::percent_decode;
 
 namespace {
 
@@ -292,4 +299,4 @@ RouteReply route(const RouteRequest& request, RwsBackend& backend, MastershipGat
     }
 }
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

@@ -1,11 +1,11 @@
-#include "drivers/abb/rws/in_memory_controller.hpp"
+#include "drivers/sim/rws/in_memory_controller.hpp"
 
 #include <filesystem>
 
 #include "drivers/abb/rapid/names.hpp"
 #include "drivers/abb/rapid/reader.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
 
 namespace {
 
@@ -267,4 +267,4 @@ int InMemoryController::start_count() const {
     return start_count_;
 }
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

@@ -16,7 +16,17 @@
 
 #include "drivers/abb/rws/rws_types.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
+
+// The protocol's values (drivers/abb/rws/rws_types.hpp), the same the client reads.
+using abb::rws::BuildError;
+using abb::rws::ControllerState;
+using abb::rws::ExecutionInfo;
+using abb::rws::ExecutionState;
+using abb::rws::ModuleInfo;
+using abb::rws::StartOptions;
+using abb::rws::format;
+using abb::rws::to_string;
 
 class BackendError : public std::runtime_error {
   public:
@@ -63,4 +73,4 @@ class RwsBackend {
                               const std::string& value) = 0;
 };
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

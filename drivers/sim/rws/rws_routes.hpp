@@ -19,9 +19,9 @@
 #include <string>
 #include <string_view>
 
-#include "drivers/abb/rws/rws_backend.hpp"
+#include "drivers/sim/rws/rws_backend.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
 
 class MastershipGate {
   public:
@@ -48,4 +48,4 @@ struct RouteReply {
 RouteReply route(const RouteRequest& request, RwsBackend& backend, MastershipGate& mastership,
                  std::string_view task);
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

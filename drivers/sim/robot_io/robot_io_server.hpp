@@ -19,7 +19,7 @@
 #include <memory>
 #include <string>
 
-namespace fibrecell::drivers::abb {
+namespace fibrecell::drivers::sim {
 
 struct RobotIoServerOptions {
     std::string bind_address = "127.0.0.1";  // IPv4 address to listen on
@@ -53,7 +53,7 @@ class RobotIoServer {
   public:
     // Binds and starts serving; throws RobotIoError when the address cannot be bound, and
     // std::invalid_argument for a map that fails validate().
-    explicit RobotIoServer(RobotIoMap map, RobotIoServerOptions options = {});
+    explicit RobotIoServer(abb::RobotIoMap map, RobotIoServerOptions options = {});
     ~RobotIoServer();  // closes every connection and joins the server thread
     RobotIoServer(const RobotIoServer&) = delete;
     RobotIoServer& operator=(const RobotIoServer&) = delete;
@@ -92,4 +92,4 @@ class RobotIoServer {
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace fibrecell::drivers::abb
+}  // namespace fibrecell::drivers::sim

@@ -20,15 +20,15 @@
 
 #include "drivers/abb/rapid/program.hpp"
 #include "drivers/abb/rapid/validate.hpp"
-#include "drivers/abb/rws/rws_backend.hpp"
+#include "drivers/sim/rws/rws_backend.hpp"
 
-namespace fibrecell::drivers::abb::rws {
+namespace fibrecell::drivers::sim::rws {
 
 class InMemoryController : public RwsBackend {
   public:
     // `options` is the template for building modules: known_signals (the EIO configuration),
     // max_lines, ... file_name, loaded_modules and the external names are filled per load.
-    explicit InMemoryController(rapid::ValidateOptions options = {});
+    explicit InMemoryController(abb::rapid::ValidateOptions options = {});
 
     // RwsBackend
     bool write_file(const std::string& path, std::string contents) override;
@@ -49,7 +49,7 @@ class InMemoryController : public RwsBackend {
     // Simulator API (thread-safe).
     void set_controller_state(ControllerState s);
     void set_execution_state(ExecutionState s);  // e.g. the program reached its end
-    std::optional<rapid::Module> module(std::string_view name) const;  // as loaded
+    std::optional<abb::rapid::Module> module(std::string_view name) const;  // as loaded
     std::vector<std::string> files() const;
     bool program_pointer_at_main() const;  // set by reset_pp, cleared by load/unload
     int start_count() const;
@@ -60,15 +60,15 @@ class InMemoryController : public RwsBackend {
   private:
     struct Symbol {
         std::string type;
-        rapid::Storage storage = rapid::Storage::var;
+        abb::rapid::Storage storage = abb::rapid::Storage::var;
         std::string value;
     };
     struct Loaded {
-        rapid::Module module;
+        abb::rapid::Module module;
         std::map<std::string, Symbol> symbols;  // by folded name
     };
 
-    rapid::ValidateOptions options_;
+    abb::rapid::ValidateOptions options_;
     std::map<std::string, std::string> files_;
     std::vector<Loaded> task_;  // in load order
     std::vector<BuildError> build_log_;
@@ -82,4 +82,4 @@ class InMemoryController : public RwsBackend {
     bool has_main() const;
 };
 
-}  // namespace fibrecell::drivers::abb::rws
+}  // namespace fibrecell::drivers::sim::rws

@@ -1,4 +1,4 @@
-#include "drivers/abb/modbus/robot_io_server.hpp"
+#include "drivers/sim/robot_io/robot_io_server.hpp"
 
 #include "config/thread_priority.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
@@ -23,7 +23,16 @@
 #include <utility>
 #include <vector>
 
-namespace fibrecell::drivers::abb {
+namespace fibrecell::drivers::sim {
+
+// The map and its errors are the driver's (drivers/abb/modbus): the coupler serves what the link reads.
+using abb::is_bit_table;
+using abb::ModbusAddress;
+using abb::ModbusTable;
+using abb::RobotIoConfig;
+using abb::RobotIoError;
+using abb::RobotIoMap;
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -570,4 +579,4 @@ RobotIoServerStats RobotIoServer::stats() const {
     return impl_->st;
 }
 
-}  // namespace fibrecell::drivers::abb
+}  // namespace fibrecell::drivers::sim
