@@ -5,7 +5,6 @@
 #   tools/setup.sh demo   build (Release), start the simulated cell's service, print the bundled example
 #   tools/setup.sh test   build (sanitizers on) and run the whole test suite
 #   tools/setup.sh build  only install and build (Release)
-#   tools/setup.sh install  only install what is missing for all of them (CI, before it builds)
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -124,11 +123,6 @@ case "${1:-demo}" in
             -DFIBRECELL_TESTS=OFF
         run_demo
         ;;
-    install)
-        phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}" \
-            "${test_packages[@]}"
-        phase "the dashboard's packages" install_web_packages
-        ;;
     test)
         phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}" \
             "${test_packages[@]}"
@@ -138,7 +132,7 @@ case "${1:-demo}" in
         phase "the test suite" run_suite
         ;;
     *)
-        echo "usage: tools/setup.sh [demo|test|build|install]" >&2
+        echo "usage: tools/setup.sh [demo|test|build]" >&2
         exit 2
         ;;
 esac
