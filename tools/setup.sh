@@ -128,7 +128,7 @@ case "${1:-demo}" in
             "${test_packages[@]}"
         phase "the dashboard's packages" install_web_packages
         phase "the sanitizer build" configure_and_build "$test_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-            -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF
+            -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF -DFIBRECELL_SOAK=OFF
         phase "the test suite" run_suite
         ;;
     *)
