@@ -6,7 +6,7 @@
 //
 //   build/release/bench/board_bench [BUILD_DIR]    BUILD_DIR has tools/gt2560-avr and the firmware
 #include "drivers/marlin/marlin_link.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 #include "gt2560_avr_process.hpp"
 #include "tests/support/project_paths.hpp"
 

@@ -2,7 +2,7 @@
 // ping-pong over a pseudo-terminal), and the latency from "command requested" (submit) to
 // "bytes written" on an idle link, median and p99. Release build; numbers are reported only.
 #include "drivers/marlin/marlin_link.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -16,7 +16,7 @@
 #include "daemon/print/print_session.hpp"
 #include "drivers/abb/rapid/rapid_writer.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 #include "drivers/sim/motion/trajectory_analysis.hpp"
 #include "gt2560_avr_process.hpp"
 #include "tests/support/project_paths.hpp"

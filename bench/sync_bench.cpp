@@ -8,7 +8,7 @@
 #include "daemon/sync/sync_engine.hpp"
 #include "drivers/abb/modbus/robot_io_link.hpp"
 #include "drivers/sim/robot_io/robot_io_server.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 
 #include <spdlog/spdlog.h>
 

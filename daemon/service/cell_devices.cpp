@@ -1,7 +1,7 @@
 #include "daemon/service/cell_devices.hpp"
 
 #include "drivers/sim/cell/sim_cell.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 
 #include <spdlog/spdlog.h>
 

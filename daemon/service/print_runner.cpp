@@ -1,12 +1,12 @@
 #include "daemon/service/print_runner.hpp"
 
 #include "config/durable_file.hpp"
+#include "daemon/service/print_figures.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 
 namespace fibrecell::daemon::service {
 
@@ -17,17 +17,6 @@ using jobs::JobState;
 using nlohmann::json;
 
 namespace {
-
-json summary_json(const sync::LatencySummary& s) {
-    return {{"count", s.count}, {"median", s.median}, {"p99", s.p99}, {"max", s.max}};
-}
-
-// The engine's timing of one event kind, when it has seen one.
-std::optional<sync::KindTiming> timing_of(const sync::SyncStatus& s, abb::EventKind kind) {
-    for (const auto& t : s.stats.timing)
-        if (t.kind == kind) return t;
-    return std::nullopt;
-}
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -40,38 +29,6 @@ std::optional<drivers::Head> head_at(const abb::PrintProgram& program, std::int6
             return e.nozzle == abb::Nozzle::pla ? drivers::Head::pla : drivers::Head::ccf;
     }
     return std::nullopt;
-}
-
-json shortfall_json(const sync::Shortfall& f) {
-    return {{"kind", sync::to_string(f.kind)}, {"event", f.sequence}, {"layer", f.layer + 1},
-            {"path", f.path + 1},             {"mm", f.mm}};
-}
-
-std::string describe(const sync::Shortfall& f) {
-    char mm[32];
-    std::snprintf(mm, sizeof mm, "%.1f mm", f.mm);
-    const std::string where = " at event " + std::to_string(f.sequence) + " (layer " +
-                              std::to_string(f.layer + 1) + ", path " + std::to_string(f.path + 1) +
-                              ")";
-    switch (f.kind) {
-        case sync::ShortfallKind::fibre_feed_dropped:
-            return "fibre path" + where + ": " + mm + " not fed";
-        case sync::ShortfallKind::pla_feed_dropped:
-            return "PLA path" + where + ": " + mm + " not extruded";
-        case sync::ShortfallKind::late_cut: return "cut" + where + ": " + mm + " late";
-    }
-    return "?";
-}
-
-// The job's reason when the print ended short of its plan: the first few, then how many more.
-std::string shortfall_reason(const std::vector<sync::Shortfall>& all) {
-    constexpr std::size_t shown = 3;
-    std::string r = std::to_string(all.size()) +
-                    (all.size() == 1 ? " shortfall from the plan: " : " shortfalls from the plan: ");
-    for (std::size_t i = 0; i < std::min(all.size(), shown); ++i)
-        r += (i ? "; " : "") + describe(all[i]);
-    if (all.size() > shown) r += "; and " + std::to_string(all.size() - shown) + " more";
-    return r + " (result.json: shortfalls)";
 }
 
 }  // namespace
@@ -148,16 +105,7 @@ std::optional<std::int64_t> PrintRunner::current_job() const {
 json PrintRunner::print_status() const {
     std::lock_guard lock(mu_);
     if (!active_) return json::object();
-    json sync = {{"last_confirmed", active_->sync.last_confirmed},
-                 {"faulted", active_->sync.faulted},
-                 {"paused", active_->sync.paused}};
-    if (const auto cut = timing_of(active_->sync, abb::EventKind::cut))
-        sync["cut_error_mm"] = summary_json(cut->position_error_mm);
-    sync::LatencySummary latency;
-    for (const auto& t : active_->sync.stats.timing)
-        if (t.submit_ms.count > latency.count) latency = t.submit_ms;
-    if (latency.count > 0) sync["latency_ms"] = summary_json(latency);
-    return {{"job", active_->id}, {"progress", progress_json()}, {"sync", sync}};
+    return {{"job", active_->id}, {"progress", progress_json()}, {"sync", live_sync_json(active_->sync)}};
 }
 
 json PrintRunner::heater_status() const {
@@ -614,18 +562,7 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
                    {"events", a->plan.program.events.size()},
                    {"first_event", a->plan.first_event}};
     if (!outcome_reason.empty()) result["reason"] = outcome_reason;
-    if (const auto cut = timing_of(st.sync, abb::EventKind::cut))
-        result["cut_error_mm"] = summary_json(cut->position_error_mm);
-    // Event -> first board command, per kind (the engine's own measurement).
-    json latency = json::object();
-    for (const auto& t : st.sync.stats.timing)
-        latency[std::string(abb::to_string(t.kind))] = summary_json(t.submit_ms);
-    result["latency_ms"] = latency;
-    // What fell short of the plan, path by path (a completed print with any is
-    // completed_with_warnings).
-    json shortfalls = json::array();
-    for (const auto& f : st.sync.stats.shortfalls) shortfalls.push_back(shortfall_json(f));
-    result["shortfalls"] = shortfalls;
+    result.update(result_sync_json(st.sync));
     try {
         config::write_file_durably(store_.job_dir(a->id) / "result.json", result.dump(2) + "\n");
     } catch (const std::exception& e) {

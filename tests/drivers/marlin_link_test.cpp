@@ -1,6 +1,6 @@
 // The real MarlinLink against the mock GT2560 over a real pseudo-terminal.
 #include "drivers/marlin/marlin_link.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"

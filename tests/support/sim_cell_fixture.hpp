@@ -7,7 +7,7 @@
 
 #include "daemon/service/cell_devices.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/project_paths.hpp"
 

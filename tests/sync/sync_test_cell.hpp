@@ -10,7 +10,7 @@
 #include "drivers/abb/program/print_program.hpp"
 #include "drivers/extruder/extruder_controller.hpp"
 #include "drivers/marlin/marlin_link.hpp"
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 #include "metered_pieces.hpp"
 #include "tests/support/eventually.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -6,7 +6,7 @@
 // With --daemon it ignores stdin and runs until SIGTERM/SIGINT; --log appends every executed
 // command ("<simulated s>\t<command>") to a file, flushed as it goes, so that a test can read the
 // board's log after killing the service that drove it.
-#include "drivers/sim/mock_gt2560.hpp"
+#include "drivers/sim/mock_board/mock_gt2560.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -1,6 +1,8 @@
 #include "drivers/abb/modbus/robot_io_link.hpp"
 
 #include "config/thread_priority.hpp"
+#include "drivers/abb/modbus/input_filters.hpp"
+#include "drivers/abb/modbus/modbus_errors.hpp"
 #include "drivers/abb/modbus/modbus_read_plan.hpp"
 
 #include <modbus.h>
@@ -41,35 +43,6 @@ double gap_ms(IoClock::time_point a, IoClock::time_point b) {
 long long ms_between(IoClock::time_point a, IoClock::time_point b) {
     return duration_cast<milliseconds>(b - a).count();
 }
-
-// A 16-bit value that counts only once `needed` polls in a row read it (torn group reads).
-struct StableValue {
-    std::optional<std::uint16_t> accepted;
-    std::uint16_t candidate = 0;
-    int count = 0;
-    IoClock::time_point first_read{};
-
-    // True when `v` became the accepted value with this read; `torn` counts abandoned candidates.
-    bool update(std::uint16_t v, IoClock::time_point now, int needed, std::uint64_t& torn) {
-        if (accepted && v == *accepted) {
-            if (count > 0) ++torn;
-            count = 0;
-            return false;
-        }
-        if (count > 0 && v == candidate) {
-            ++count;
-        } else {
-            if (count > 0) ++torn;
-            candidate = v;
-            count = 1;
-            first_read = now;
-        }
-        if (count < needed) return false;
-        accepted = v;
-        count = 0;
-        return true;
-    }
-};
 
 }  // namespace
 
@@ -115,13 +88,9 @@ struct RobotIoLink::Impl {
     InputBuffers buffers;
     StableValue event;
     StableValue barrier;
-    std::optional<bool> hb_last;
-    IoClock::time_point hb_last_edge{};
+    RobotHeartbeatWatch heartbeat;
     std::optional<IoClock::time_point> last_toggle;  // of heartbeat_out, this connection
     std::optional<IoClock::time_point> last_digest;  // the last successful read, this connection
-    bool hb_armed = false;  // an edge was seen since start(): the watch is on
-    bool hb_edge_since_connect = false;
-    bool hb_lost_reported = false;
     bool running = false;
     IoClock::time_point fault_since{};
     IoClock::time_point next_heartbeat{};
@@ -132,7 +101,8 @@ struct RobotIoLink::Impl {
         : cfg(std::move(c)),
           endpoint("modbus " + cfg.host + ":" + std::to_string(cfg.port)),
           plan(make_read_plan(cfg.map)),
-          buffers(plan) {}
+          buffers(plan),
+          heartbeat(cfg.robot_heartbeat_timeout) {}
 
     // --- helpers -------------------------------------------------------------------------------
 
@@ -148,23 +118,7 @@ struct RobotIoLink::Impl {
     }
 
     std::string io_error_text(int err, const std::string& what) const {
-        const std::string msg = modbus_strerror(err);
-        switch (err) {
-            case ECONNRESET:
-            case EPIPE:
-            case ECONNABORTED:
-            case ENOTCONN:
-            case EBADF:
-                return endpoint + ": connection lost (" + msg + ")";
-            case ETIMEDOUT:
-                return endpoint + ": no response to " + what + " within " +
-                       std::to_string(cfg.response_timeout.count()) + " ms (" + msg + ")";
-            default:
-                break;
-        }
-        if (err > MODBUS_ENOBASE)
-            return endpoint + ": " + what + " refused by the device (" + msg + ")";
-        return endpoint + ": " + what + " failed (" + msg + ")";
+        return modbus_error_text(err, endpoint, what, cfg.response_timeout);
     }
 
     void publish(const std::function<void(RobotIoSnapshot&)>& f) {
@@ -221,10 +175,7 @@ struct RobotIoLink::Impl {
         // Baselines restart with the connection; the accepted values and the watch stay armed.
         event.count = 0;
         barrier.count = 0;
-        hb_last.reset();
-        hb_last_edge = now;
-        hb_edge_since_connect = false;
-        hb_lost_reported = false;
+        heartbeat.reconnected(now);
         next_heartbeat = now;
         last_toggle.reset();
         last_digest.reset();
@@ -365,7 +316,7 @@ struct RobotIoLink::Impl {
         // machine too busy). The robot's heartbeat went unread, not missing; ours stopped, and
         // FcMain held the robot on it. Said as what it was, and the robot's watch starts over.
         if (last_digest && now - *last_digest > cfg.robot_heartbeat_timeout) {
-            hb_last_edge = now;
+            heartbeat.restart_age(now);
             enter_fault("robot_io.service_not_running",
                         "fibrecelld itself did not run for " +
                             std::to_string(ms_between(*last_digest, now)) +
@@ -377,28 +328,16 @@ struct RobotIoLink::Impl {
         const std::uint16_t ev = buffers.word(plan, m.event_number);
         const std::uint16_t br = buffers.word(plan, m.barrier_number);
         running = buffers.bit(plan, m.robot_running);
-        const bool hb = buffers.bit(plan, m.heartbeat_in);
 
         const auto previous_event = event.accepted;
         const bool event_changed = event.update(ev, now, cfg.stable_reads, stats.torn_reads);
         barrier.update(br, now, cfg.stable_reads, stats.torn_reads);
 
-        if (!hb_last) {
-            hb_last = hb;
-        } else if (hb != *hb_last) {
-            if (hb_edge_since_connect)
-                stats.robot_heartbeat_gap_ms_max =
-                    std::max(stats.robot_heartbeat_gap_ms_max, gap_ms(hb_last_edge, now));
-            hb_last = hb;
-            hb_last_edge = now;
-            hb_armed = true;
-            hb_edge_since_connect = true;
-            hb_lost_reported = false;
-        }
-        const auto hb_age = now - hb_last_edge;
-        const bool hb_ok =
-            hb_armed && hb_edge_since_connect && hb_age <= cfg.robot_heartbeat_timeout;
-        const bool hb_lost = hb_armed && hb_age > cfg.robot_heartbeat_timeout;
+        const RobotHeartbeatWatch::Reading hb =
+            heartbeat.read(buffers.bit(plan, m.heartbeat_in), now);
+        if (hb.gap_ms)
+            stats.robot_heartbeat_gap_ms_max =
+                std::max(stats.robot_heartbeat_gap_ms_max, *hb.gap_ms);
 
         std::optional<EventCounterChange> change;
         if (event_changed) {
@@ -418,14 +357,13 @@ struct RobotIoLink::Impl {
             s.event_counter = event.accepted.value_or(0);
             s.barrier = barrier.accepted.value_or(0);
             s.running = running;
-            s.robot_heartbeat_ok = hb_ok;
+            s.robot_heartbeat_ok = hb.ok;
             s.last_poll = now;
         });
 
-        if (hb_lost && !hb_lost_reported) {
-            hb_lost_reported = true;
+        if (hb.lost_now) {
             const std::string reason =
-                "robot heartbeat lost for " + std::to_string(ms_between(hb_last_edge, now)) + " ms";
+                "robot heartbeat lost for " + std::to_string(hb.still_ms) + " ms";
             if (state == RobotIoState::up) {
                 enter_fault("robot_io.robot_heartbeat_lost", reason);
             } else {
@@ -434,7 +372,7 @@ struct RobotIoLink::Impl {
                     publish([&](RobotIoSnapshot& s) { s.last_error = reason; });
             }
         }
-        const bool healthy = !hb_armed || hb_ok;
+        const bool healthy = !heartbeat.armed() || hb.ok;
         if (healthy && state == RobotIoState::connecting) {
             spdlog::info("robot_io.link_up {} unit={} poll_period_us={}", endpoint, cfg.unit_id,
                          cfg.poll_period.count());

@@ -7,6 +7,8 @@
 
 namespace fibrecell::drivers::sim::rws {
 
+namespace rapid = abb::rapid;
+
 namespace {
 
 // Build-log entries for the errors of `diagnostics` (warnings do not stop a load).
