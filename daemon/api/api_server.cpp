@@ -258,17 +258,25 @@ ApiServer::~ApiServer() {
     if (impl_->started) stop_core(impl_->core, false);
 }
 
-void ApiServer::add_method(std::string name, SyncHandler handler) {
-    impl_->core->methods.add(std::move(name), std::move(handler));
+void ApiServer::add_method(std::string name, SyncHandler handler, std::string owner) {
+    impl_->core->methods.add(std::move(name), std::move(handler), std::move(owner));
 }
 
-void ApiServer::add_async_method(std::string name, AsyncHandler handler) {
-    impl_->core->methods.add_async(std::move(name), std::move(handler));
+void ApiServer::add_async_method(std::string name, AsyncHandler handler, std::string owner) {
+    impl_->core->methods.add_async(std::move(name), std::move(handler), std::move(owner));
 }
 
 void ApiServer::add_control_method(const std::string& name) {
     impl_->core->methods.mark_control(name);
 }
+
+void ApiServer::add_event(std::string name, std::string owner) {
+    impl_->core->methods.add_event(std::move(name), std::move(owner));
+}
+
+std::vector<Registration> ApiServer::methods() const { return impl_->core->methods.methods(); }
+
+std::vector<Registration> ApiServer::events() const { return impl_->core->methods.events(); }
 
 void ApiServer::start() {
     if (impl_->started) throw ApiStartError("the API server is already started");

@@ -27,6 +27,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fibrecell::api {
 
@@ -58,11 +59,17 @@ class ApiServer {
     ApiServer(const ApiServer&) = delete;
     ApiServer& operator=(const ApiServer&) = delete;
 
-    void add_method(std::string name, SyncHandler handler);
-    void add_async_method(std::string name, AsyncHandler handler);
+    // `owner`: the service's component that answers it (daemon/component/endpoints.hpp).
+    void add_method(std::string name, SyncHandler handler, std::string owner = {});
+    void add_async_method(std::string name, AsyncHandler handler, std::string owner = {});
     // A method the operator must always reach (status, pause, abort, estop): callable from the
     // reserved capacity beyond api.max_clients. Register it first.
     void add_control_method(const std::string& name);
+    // An event (notify.*) that `owner` publishes, for the registry's list.
+    void add_event(std::string name, std::string owner);
+    // What is registered: every method (built-ins too) and event with its owner.
+    std::vector<Registration> methods() const;
+    std::vector<Registration> events() const;
 
     // Binds the Unix socket (a stale file from a dead process is replaced; a live one is
     // "another fibrecelld is listening on <path>") with its mode and group, and TCP when enabled;

@@ -9,20 +9,41 @@ bool MethodRegistry::reserved(const std::string& name) {
            name.rfind("rpc.", 0) == 0;
 }
 
-void MethodRegistry::add(std::string name, SyncHandler handler) {
+void MethodRegistry::add(std::string name, SyncHandler handler, std::string owner) {
     if (!handler) throw std::logic_error("api method " + name + ": empty handler");
     // A sync handler answers before it returns; the dispatcher turns a throw into an error.
     add_async(std::move(name),
               [h = std::move(handler)](const nlohmann::json& params, const CallContext& ctx,
-                                       Responder r) { r.result(h(params, ctx)); });
+                                       Responder r) { r.result(h(params, ctx)); },
+              std::move(owner));
 }
 
-void MethodRegistry::add_async(std::string name, AsyncHandler handler) {
+void MethodRegistry::add_async(std::string name, AsyncHandler handler, std::string owner) {
     if (name.empty()) throw std::logic_error("api method: empty name");
     if (reserved(name)) throw std::logic_error("api method " + name + ": the name is reserved");
     if (!handler) throw std::logic_error("api method " + name + ": empty handler");
     if (!handlers_.emplace(name, std::move(handler)).second)
         throw std::logic_error("api method " + name + ": registered twice");
+    owners_.emplace(std::move(name), std::move(owner));
+}
+
+void MethodRegistry::add_event(std::string name, std::string owner) {
+    if (name.empty()) throw std::logic_error("api event: empty name");
+    events_.emplace(std::move(name), std::move(owner));
+}
+
+std::vector<Registration> MethodRegistry::methods() const {
+    std::vector<Registration> out;
+    for (const char* builtin : {"server.auth", "subscribe", "unsubscribe"})
+        out.push_back({builtin, "api", is_control(builtin)});
+    for (const auto& [name, owner] : owners_) out.push_back({name, owner, is_control(name)});
+    return out;
+}
+
+std::vector<Registration> MethodRegistry::events() const {
+    std::vector<Registration> out;
+    for (const auto& [name, owner] : events_) out.push_back({name, owner});
+    return out;
 }
 
 void MethodRegistry::mark_control(const std::string& name) {

@@ -14,6 +14,7 @@
 
 #include "daemon/api/api_config.hpp"
 #include "daemon/api/api_server.hpp"
+#include "daemon/http/file_route.hpp"
 
 #include <boost/asio/io_context.hpp>
 
@@ -37,11 +38,6 @@ struct HttpStats {
     std::uint64_t refused_busy = 0;    // api.max_clients were open: the longest waiting, or this one, closed
     std::uint64_t open = 0;            // HTTP connections open now (a WebSocket is the API's)
 };
-
-// Files behind the login: a request for PREFIX KEY/PATH is the file PATH below the folder the
-// resolver gives for KEY (nullopt: not found), served like a page: ordinary names only, nothing
-// outside that folder. It runs on an io thread.
-using FileResolver = std::function<std::optional<std::filesystem::path>(std::string_view key)>;
 
 class HttpServer {
   public:

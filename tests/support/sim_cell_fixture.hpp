@@ -5,7 +5,7 @@
 // MarlinLink, ExtruderController). Only the settings are the tests': a time scale, hotends that
 // heat in a fraction of a second, short robot I/O periods, and the whole trajectory kept.
 
-#include "daemon/service/cell_devices.hpp"
+#include "daemon/devices/cell_devices.hpp"
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/mock_board/mock_gt2560.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -50,7 +50,7 @@ class SimCellFixture : public ::testing::Test {
     void SetUp() override {
         daemon::CellConfig c = sim_cell_config(dir_.path(), scale_);
         c.simulation.trajectory_samples = trajectory_samples_;
-        devices_ = std::make_unique<daemon::service::CellDevices>(c);
+        devices_ = std::make_unique<daemon::devices::CellDevices>(c);
         ASSERT_NO_THROW(devices_->connect(std::chrono::seconds(20)));
         job_start_ = mock().executed_count();
     }
@@ -75,7 +75,7 @@ class SimCellFixture : public ::testing::Test {
     double scale_ = 20;  // simulated seconds per real second
     std::size_t trajectory_samples_ = 1'000'000;  // tests measure along the whole path
     TempDir dir_{"cell"};  // before the devices: the board's port link in it outlives them
-    std::unique_ptr<daemon::service::CellDevices> devices_;
+    std::unique_ptr<daemon::devices::CellDevices> devices_;
     std::size_t job_start_ = 0;
 };
 

@@ -1,17 +1,18 @@
-#include "daemon/service/print_runner.hpp"
+#include "daemon/printer/print_runner.hpp"
 
 #include "config/durable_file.hpp"
-#include "daemon/service/print_figures.hpp"
+#include "daemon/printer/print_figures.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <atomic>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
 
 namespace abb = drivers::abb;
 using Clock = std::chrono::steady_clock;
+using devices::HotendTemps;
 using jobs::JobAction;
 using jobs::JobState;
 using nlohmann::json;
@@ -79,8 +80,7 @@ void PrintRunner::pause(std::int64_t id, Done done) { post({Command::Kind::pause
 void PrintRunner::resume(std::int64_t id, Done done) { post({Command::Kind::resume, id, std::move(done)}); }
 void PrintRunner::abort(std::int64_t id, Done done) { post({Command::Kind::abort, id, std::move(done)}); }
 
-void PrintRunner::estop() {
-    devices_.estop();
+void PrintRunner::abort_for_estop() {
     std::int64_t id = 0;
     {
         std::lock_guard lock(mu_);
@@ -572,4 +572,4 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
     a->session.reset();
 }
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

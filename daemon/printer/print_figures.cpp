@@ -1,10 +1,10 @@
-#include "daemon/service/print_figures.hpp"
+#include "daemon/printer/print_figures.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <optional>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
 
 namespace abb = drivers::abb;
 using nlohmann::json;
@@ -87,4 +87,4 @@ std::string shortfall_reason(const std::vector<sync::Shortfall>& all) {
     return r + " (result.json: shortfalls)";
 }
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

@@ -1,4 +1,4 @@
-#include "daemon/service/cell_devices.hpp"
+#include "daemon/devices/cell_devices.hpp"
 
 #include "drivers/sim/cell/sim_cell.hpp"
 #include "drivers/sim/mock_board/mock_gt2560.hpp"
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <thread>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::devices {
 
 namespace abb = drivers::abb;
 using nlohmann::json;
@@ -202,4 +202,4 @@ json CellDevices::status() const {
     return {{"board", board}, {"robot", robot}};
 }
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::devices

@@ -22,8 +22,8 @@
 #include "daemon/jobs/job_store.hpp"
 #include "daemon/print/print_plan.hpp"
 #include "daemon/print/print_session.hpp"
-#include "daemon/service/cell_devices.hpp"
-#include "daemon/service/heater_policy.hpp"
+#include "daemon/devices/cell_devices.hpp"
+#include "daemon/printer/heater_policy.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -39,7 +39,9 @@
 #include <string>
 #include <thread>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
+
+using devices::CellDevices;
 
 struct PrintRunnerOptions {
     std::chrono::milliseconds connect_timeout{10000};  // devices up at a start
@@ -71,8 +73,9 @@ class PrintRunner {
     void pause(std::int64_t id, Done done);
     void resume(std::int64_t id, Done done);
     void abort(std::int64_t id, Done done);
-    // M112 and the robot's abort request at once; a running print is aborted.
-    void estop();
+    // The cell's E-stop was sent (M112 and the robot's abort request, the cell component's
+    // cell.estop): a running print is aborted.
+    void abort_for_estop();
 
     // The job on the cell and its print progress; nullopt when none.
     std::optional<std::int64_t> current_job() const;
@@ -125,4 +128,4 @@ class PrintRunner {
     std::thread thread_;  // last
 };
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

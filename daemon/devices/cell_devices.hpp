@@ -27,7 +27,7 @@ class MockGt2560;
 class SimCell;
 }  // namespace fibrecell::drivers::sim
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::devices {
 
 class DeviceError : public std::runtime_error {
   public:
@@ -95,4 +95,4 @@ class CellDevices {
     HotendTemps temps_;
 };
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::devices

@@ -1,4 +1,4 @@
-#include "daemon/service/log_feed.hpp"
+#include "daemon/log/log_feed.hpp"
 
 #include "config/printable.hpp"
 
@@ -9,7 +9,7 @@
 #include <ctime>
 #include <mutex>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::logs {
 
 namespace {
 
@@ -54,4 +54,4 @@ LogFeedSink& installed_sink() {
 
 void feed_log_to(LogTarget target) { installed_sink().set_target(std::move(target)); }
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::logs

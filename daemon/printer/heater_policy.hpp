@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
 
 struct HeaterPolicyOptions {
     std::chrono::milliseconds hold_after_print{0};
@@ -62,4 +62,4 @@ class HeaterPolicy {
     std::optional<Clock::time_point> off_sent_at_;
 };
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

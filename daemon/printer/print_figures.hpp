@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
 
 // last_confirmed, faulted, paused; the cut position error and the slowest kind's latency once seen.
 nlohmann::json live_sync_json(const sync::SyncStatus& s);
@@ -22,4 +22,4 @@ nlohmann::json result_sync_json(const sync::SyncStatus& s);
 // the first few, then how many more.
 std::string shortfall_reason(const std::vector<sync::Shortfall>& all);
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

@@ -7,7 +7,7 @@
 
 #include <functional>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::logs {
 
 using LogTarget = std::function<void(nlohmann::json line)>;
 
@@ -15,4 +15,4 @@ using LogTarget = std::function<void(nlohmann::json line)>;
 // logger's lock held: it must not log, and must be quick (ApiServer::publish only posts).
 void feed_log_to(LogTarget target);
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::logs

@@ -1,10 +1,10 @@
-#include "daemon/service/heater_policy.hpp"
+#include "daemon/printer/heater_policy.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 
-namespace fibrecell::daemon::service {
+namespace fibrecell::daemon::printer {
 
 namespace {
 
@@ -111,4 +111,4 @@ nlohmann::json HeaterPolicy::status(Clock::time_point now) const {
     return s;
 }
 
-}  // namespace fibrecell::daemon::service
+}  // namespace fibrecell::daemon::printer

@@ -1,0 +1,65 @@
+#pragma once
+// Printer, the component that owns the print on the cell (docs/layout.md, "Components"): the
+// print runner (one print at a time on its thread: pre-flight, the sync engine, recovery) and the
+// heaters' policy. It answers job.start, job.pause, job.resume and job.abort, publishes the print's
+// notify.job_progress, adds the live print to a job's view and to cell.status, and aborts its
+// print at cell.estop.
+//
+// Hook for the components above it:
+//   add_start_gate  a check that must pass before any print starts (job.start, job.resume of an
+//                   interrupted job, a job submitted with `start` once planned): a gate that
+//                   answers a reason refuses the start with it, and nothing moves.
+
+#include "daemon/cell/cell_config.hpp"
+#include "daemon/component/component.hpp"
+#include "daemon/devices/cell_component.hpp"
+#include "daemon/jobs/jobs_component.hpp"
+#include "daemon/printer/print_runner.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fibrecell::daemon::printer {
+
+class PrinterComponent : public component::Component {
+  public:
+    // Why `record` must not start now, or nullopt. Called on the API's strand or a planning
+    // thread.
+    using StartGate = std::function<std::optional<std::string>(const jobs::JobRecord& record)>;
+
+    PrinterComponent(jobs::JobsComponent& jobs, devices::CellComponent& cell, const CellConfig& config,
+                     PrintRunnerOptions options);
+    ~PrinterComponent() override;
+
+    void add_start_gate(StartGate gate);  // before start()
+
+    void register_endpoints(component::Endpoints& endpoints) override;
+    void start() override;
+    void stop() override;  // a running print is paused, to resume after the next start
+
+    // For systemd's STATUS= line: "idle, 3 jobs" or "printing job 4, layer 2/26".
+    std::string one_line_status() const;
+
+  private:
+    // The first gate's reason why `record` must not start, or nullopt.
+    std::optional<std::string> held_at_gate(const jobs::JobRecord& record) const;
+    // The call's `job`; without one, the job on the cell (pause, resume, abort).
+    std::int64_t job_or_on_cell(const nlohmann::json& params, const api::CallContext& ctx) const;
+    void start_when_planned(const jobs::JobRecord& record);
+
+    jobs::JobsComponent& jobs_;
+    devices::CellComponent& cell_;
+    CellConfig config_;
+    PrintRunnerOptions options_;
+    component::Endpoints endpoints_;
+    std::vector<StartGate> gates_;
+    std::unique_ptr<PrintRunner> runner_;
+};
+
+}  // namespace fibrecell::daemon::printer
