@@ -123,6 +123,22 @@ class MshParser {
         expect_end("Entities");
     }
 
+    // MSH 4's head of $Nodes and $Elements: the number of blocks and of items, the smallest and
+    // largest tag; both counts checked against what is left of the file (`item_bytes` at least
+    // an item).
+    struct BlocksHeader {
+        long long blocks, items;
+    };
+    BlocksHeader read_blocks_header(const std::string& item, std::size_t item_bytes) {
+        const long long blocks = s_.integer("the number of " + item + " blocks", 0, INT_MAX);
+        const long long items = s_.integer("the number of " + item + "s", 0, INT_MAX);
+        s_.integer("the minimum " + item + " tag");
+        s_.integer("the maximum " + item + " tag");
+        s_.check_count(blocks, 8, item + " block");
+        s_.check_count(items, item_bytes, item);
+        return {blocks, items};
+    }
+
     void read_nodes() {
         if (have_nodes_) s_.fail("second $Nodes section");
         if (version_ == 2) {
@@ -134,12 +150,7 @@ class MshParser {
                 add_node(tag, read_point());
             }
         } else {
-            const long long blocks = s_.integer("the number of node blocks", 0, INT_MAX);
-            const long long n = s_.integer("the number of nodes", 0, INT_MAX);
-            s_.integer("the minimum node tag");
-            s_.integer("the maximum node tag");
-            s_.check_count(blocks, 8, "node block");
-            s_.check_count(n, 8, "node");
+            const auto [blocks, n] = read_blocks_header("node", 8);
             reserve_nodes(n);
             std::vector<long long> tags;
             for (long long b = 0; b < blocks; ++b) {
@@ -205,12 +216,7 @@ class MshParser {
                 read_element(tag, type, physicals);
             }
         } else {
-            const long long blocks = s_.integer("the number of element blocks", 0, INT_MAX);
-            const long long n = s_.integer("the number of elements", 0, INT_MAX);
-            s_.integer("the minimum element tag");
-            s_.integer("the maximum element tag");
-            s_.check_count(blocks, 8, "element block");
-            s_.check_count(n, 4, "element");
+            const auto [blocks, n] = read_blocks_header("element", 4);
             element_index_.reserve(static_cast<std::size_t>(n));
             long long seen = 0;
             for (long long b = 0; b < blocks; ++b) {

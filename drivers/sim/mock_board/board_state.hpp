@@ -104,6 +104,11 @@ struct MockGt2560::Impl {
     double keepalive_s = 2;
 
     std::set<std::int64_t> corrupt, drop, duplicate, swallow;
+    // Line k goes into one of the fault sets above (the test's hand on the wire).
+    void mark(std::set<std::int64_t>& faults, std::int64_t k) {
+        std::lock_guard lock(mu);
+        faults.insert(k);
+    }
     std::map<std::int64_t, double> delay;
     bool garble_resend = false;
     std::optional<std::int64_t> reset_at;

@@ -84,22 +84,10 @@ std::chrono::steady_clock::time_point MockGt2560::wall_at(double sim_s) const {
                            std::chrono::duration<double>(sim_s / impl_->o.time_scale));
 }
 
-void MockGt2560::corrupt_line(std::int64_t k) {
-    std::lock_guard lock(impl_->mu);
-    impl_->corrupt.insert(k);
-}
-void MockGt2560::drop_line(std::int64_t k) {
-    std::lock_guard lock(impl_->mu);
-    impl_->drop.insert(k);
-}
-void MockGt2560::duplicate_line(std::int64_t k) {
-    std::lock_guard lock(impl_->mu);
-    impl_->duplicate.insert(k);
-}
-void MockGt2560::swallow_ok(std::int64_t k) {
-    std::lock_guard lock(impl_->mu);
-    impl_->swallow.insert(k);
-}
+void MockGt2560::corrupt_line(std::int64_t k) { impl_->mark(impl_->corrupt, k); }
+void MockGt2560::drop_line(std::int64_t k) { impl_->mark(impl_->drop, k); }
+void MockGt2560::duplicate_line(std::int64_t k) { impl_->mark(impl_->duplicate, k); }
+void MockGt2560::swallow_ok(std::int64_t k) { impl_->mark(impl_->swallow, k); }
 void MockGt2560::delay_ok(std::int64_t k, double sim_s) {
     std::lock_guard lock(impl_->mu);
     impl_->delay[k] = sim_s;

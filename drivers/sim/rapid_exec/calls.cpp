@@ -276,18 +276,7 @@ std::optional<RapidTask::Impl::Value> RapidTask::Impl::call_routine(
         } catch (const rapid::EvalError& e) {
             throw RuntimeError(d.line, e.what());
         }
-        if (d.value) {
-            v.value = *d.value;
-        } else if (d.init) {
-            std::string why;
-            auto fitted = rapid::conform_array(eval(*d.init), v.type, v.extents, &why);
-            if (!fitted) throw RuntimeError(d.line, "initial value of " + d.name + ": " + why);
-            v.value = std::move(*fitted);
-        } else {
-            auto def = rapid::default_value(v.type, v.extents);
-            if (!def) throw RuntimeError(d.line, "type " + d.type + " is not executed");
-            v.value = std::move(*def);
-        }
+        v.value = initial_value(d, v, [&](const rapid::Expr& init) { return eval(init); });
         frame().locals[rapid::fold(d.name)] = std::move(v);
     } catch (const RuntimeError& e) {
         throw TaskError(located(e.line(), e.what()));  // in the callee's module

@@ -14,10 +14,7 @@ bool RapidTask::Impl::interrupt_instruction(const std::string& name,
                                             const std::vector<Argument>& args, std::size_t line) {
     const std::string f = rapid::fold(name);
     const auto pos = rapid::positional_args(args);
-    auto expect = [&](std::size_t n) {
-        if (pos.size() != n)
-            throw RuntimeError(line, name + " expects " + std::to_string(n) + " arguments");
-    };
+    auto expect = [&](std::size_t n) { rapid_exec::expect_args(pos, n, name, line); };
     // The connected interrupt an intnum argument names.
     auto connected = [&](const Expr& e) -> std::pair<std::int64_t, Interrupt*> {
         const std::int64_t n = rapid_exec::interrupt_number(eval(e));

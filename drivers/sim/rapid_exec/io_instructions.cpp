@@ -10,6 +10,7 @@ namespace fibrecell::drivers::sim {
 
 namespace rapid = abb::rapid;
 using rapid_exec::RuntimeError;
+using rapid_exec::expect_args;
 
 namespace {
 
@@ -17,16 +18,16 @@ namespace {
 constexpr std::string_view accepted_settings[] = {"AccSet", "VelSet",   "ConfJ",
                                                   "ConfL",  "SingArea", "TPErase"};
 
-void expect_args(const std::vector<const abb::rapid::Expr*>& args, std::size_t n,
-                 const std::string& name, std::size_t line) {
+}  // namespace
+
+// ---- Helpers shared by the instruction files ---------------------------------------------------
+
+void rapid_exec::expect_args(const std::vector<const abb::rapid::Expr*>& args, std::size_t n,
+                             const std::string& name, std::size_t line) {
     if (args.size() != n)
         throw RuntimeError(line, name + " expects " + std::to_string(n) + " arguments, found " +
                                      std::to_string(args.size()));
 }
-
-}  // namespace
-
-// ---- Helpers shared by the instruction files ---------------------------------------------------
 
 std::string RapidTask::Impl::signal_name(const Expr& e) {
     const auto* n = std::get_if<rapid::NameRef>(&e.node);

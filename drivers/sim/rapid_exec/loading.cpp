@@ -33,10 +33,7 @@ bool RapidTask::Impl::load_instruction(const std::string& name, const std::vecto
                                        std::size_t line) {
     const std::string f = rapid::fold(name);
     const auto pos = rapid::positional_args(args);
-    auto expect = [&](std::size_t n) {
-        if (pos.size() != n)
-            throw RuntimeError(line, name + " expects " + std::to_string(n) + " arguments");
-    };
+    auto expect = [&](std::size_t n) { rapid_exec::expect_args(pos, n, name, line); };
     if (rapid::find_optional(args, "File") != nullptr || rapid::find_optional(args, "CheckRef"))
         throw RuntimeError(line, name + ": \\File and \\CheckRef are not executed");
 

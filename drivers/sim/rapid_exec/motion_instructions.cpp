@@ -38,10 +38,7 @@ bool RapidTask::Impl::motion_instruction(const std::string& name,
                                          const std::vector<Argument>& args, std::size_t line) {
     const std::string f = rapid::fold(name);
     const auto pos = rapid::positional_args(args);
-    auto expect = [&](std::size_t n) {
-        if (pos.size() != n)
-            throw RuntimeError(line, name + " expects " + std::to_string(n) + " arguments");
-    };
+    auto expect = [&](std::size_t n) { rapid_exec::expect_args(pos, n, name, line); };
 
     if (f == "stopmove") {
         motion.stop_move();

@@ -18,6 +18,20 @@ std::string canonical_type(const std::string& type) {
 
 }  // namespace
 
+rapid::Value initial_value(const rapid::DataDecl& d, const Variable& v,
+                           const std::function<rapid::Value(const rapid::Expr&)>& eval) {
+    if (d.value) return *d.value;
+    if (d.init) {
+        std::string why;
+        auto fitted = rapid::conform_array(eval(*d.init), v.type, v.extents, &why);
+        if (!fitted) throw RuntimeError(d.line, "initial value of " + d.name + ": " + why);
+        return std::move(*fitted);
+    }
+    auto def = rapid::default_value(v.type, v.extents);
+    if (!def) throw RuntimeError(d.line, "type " + d.type + " is not executed");
+    return std::move(*def);
+}
+
 std::shared_ptr<LoadedModule> instantiate(std::shared_ptr<const rapid::Module> module,
                                           bool dynamic, std::string path) {
     auto m = std::make_shared<LoadedModule>();
@@ -44,19 +58,8 @@ std::shared_ptr<LoadedModule> instantiate(std::shared_ptr<const rapid::Module> m
             v.extents = d.extents.empty() && !d.dims.empty()
                             ? rapid::evaluate_extents(d.dims, context)
                             : d.extents;
-            if (d.value) {
-                v.value = *d.value;
-            } else if (d.init) {
-                std::string why;
-                auto fitted = rapid::conform_array(rapid::evaluate(*d.init, context), v.type,
-                                                   v.extents, &why);
-                if (!fitted) throw RuntimeError(d.line, "initial value of " + d.name + ": " + why);
-                v.value = std::move(*fitted);
-            } else {
-                auto def = rapid::default_value(v.type, v.extents);
-                if (!def) throw RuntimeError(d.line, "type " + d.type + " is not executed");
-                v.value = std::move(*def);
-            }
+            v.value = initial_value(
+                d, v, [&](const rapid::Expr& init) { return rapid::evaluate(init, context); });
         } catch (const rapid::EvalError& e) {
             throw RuntimeError(e.line(), e.what());
         }

@@ -7,6 +7,7 @@
 #include "drivers/abb/rapid/value.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -51,6 +52,16 @@ struct LoadedModule {
 
     const std::string& name() const { return module->name; }
 };
+
+// An instruction's positional arguments must be `n`: else "MoveL expects 4 arguments, found 3".
+void expect_args(const std::vector<const rapid::Expr*>& args, std::size_t n, const std::string& name,
+                 std::size_t line);
+
+// The first value of declaration `d` whose type and extents `v` holds: the value the reader
+// evaluated, the initialiser evaluated by `eval` and fitted to them, or the type's default.
+// Throws RuntimeError at the declaration's line.
+rapid::Value initial_value(const rapid::DataDecl& d, const Variable& v,
+                           const std::function<rapid::Value(const rapid::Expr&)>& eval);
 
 // Builds the module's data from its declarations (initial values as the reader evaluated them,
 // or evaluated now against earlier data of the module). Throws RuntimeError.
