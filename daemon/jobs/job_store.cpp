@@ -233,12 +233,11 @@ LoadReport JobStore::load_all() {
 JobRecord JobStore::submit(const JobInput& input) {
     // Checked and written outside the lock, in a folder of its own: a bad job uses no id.
     const fs::path incoming = jobs_root() / (incoming_prefix + unique_suffix());
-    std::string name;
+    auto read = std::make_shared<ReadJob>();
     try {
         write_job_input(incoming / "input", input);
-        const planner::JobSpec job = check_job_input(incoming / "input", input);
-        if (options_.check_job) options_.check_job(job);
-        name = job.name;
+        read->spec = check_job_input(incoming / "input", input);
+        if (options_.settings_for) read->settings = options_.settings_for(read->spec);
     } catch (...) {
         std::error_code ec;
         fs::remove_all(incoming, ec);
@@ -262,7 +261,7 @@ JobRecord JobStore::submit(const JobInput& input) {
         r.id = next_id_;
         config::write_file_durably(options_.state_dir / "next_id", std::to_string(r.id + 1) + "\n");
         ++next_id_;
-        r.name = name;
+        r.name = read->spec.name;
         r.state = JobState::planning;
         r.submitted_at = r.updated_at = config::utc_now();
         r.start_when_planned = input.start_when_planned;
@@ -276,8 +275,10 @@ JobRecord JobStore::submit(const JobInput& input) {
             fs::remove_all(incoming, ec);  // its id stays unused
             throw;
         }
+        planner::move_job_files(read->spec, fs::absolute(incoming / "input").string(),
+                                fs::absolute(input_dir(r.id)).string());
         r.progress = {"queued", 0};
-        jobs_.insert_or_assign(r.id, Entry{r, nullptr});
+        jobs_.insert_or_assign(r.id, Entry{r, nullptr, std::move(read)});
         spdlog::info("job.submitted job {} '{}'", r.id, r.name);
     }
     notify({r});
@@ -409,7 +410,7 @@ std::optional<PlanTicket> JobStore::begin_planning(std::int64_t id) {
     const fs::path plan = plan_dir(id);
     fs::remove_all(plan);
     fs::create_directories(plan);
-    return PlanTicket{id, input_dir(id) / job_yaml_name, plan};
+    return PlanTicket{id, input_dir(id) / job_yaml_name, plan, std::move(it->second.read)};
 }
 
 void JobStore::planning_stopped(std::int64_t id) {

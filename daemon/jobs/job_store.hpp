@@ -14,6 +14,8 @@
 #include "daemon/jobs/job_journal.hpp"
 #include "daemon/jobs/job_record.hpp"
 #include "daemon/jobs/job_state.hpp"
+#include "daemon/print/print_settings.hpp"
+#include "planner/job/job_spec.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -33,8 +35,16 @@ struct JobStoreOptions {
     int max_queued = 16;              // jobs planning or planned (not started); submit refuses more
     int keep_completed = 50;          // ended jobs kept; the oldest beyond are removed
     int plan_retries = 3;             // restarts during a job's planning before it is failed
-    // What the cell says of a job at submit (the print's settings): throws to refuse it.
-    std::function<void(const planner::JobSpec&)> check_job;
+    // The print's settings for this cell, made once at submit (and read from the plan after
+    // it): throws print::SettingsError to refuse the job.
+    std::function<print::PrintSettings(const planner::JobSpec&)> settings_for;
+};
+
+// A job as the service read it, once, at its submission: the typed job (its files in the job's
+// input folder) and the print's settings for this cell. Planning takes it from there.
+struct ReadJob {
+    planner::JobSpec spec;
+    std::optional<print::PrintSettings> settings;  // none when the store has no settings_for
 };
 
 // state.json could not be written (a full disk, an I/O error): the change did not happen.
@@ -62,6 +72,9 @@ struct PlanTicket {
     std::int64_t id = 0;
     std::filesystem::path job_file;  // input/job.yaml
     std::filesystem::path plan_dir;  // emptied for this attempt
+    // As read at submit; null for a job this run of the service did not take in (it was
+    // submitted before a restart): the worker reads job_file.
+    std::shared_ptr<const ReadJob> job;
 };
 
 class JobStore {
@@ -74,7 +87,7 @@ class JobStore {
     LoadReport load_all();
 
     // Stores a new job in state planning (progress stage "queued") and returns it. Throws
-    // JobInputError / config::ConfigError for a bad job, what check_job throws for one the cell
+    // JobInputError / config::ConfigError for a bad job, what settings_for throws for one the cell
     // cannot print (nothing is stored, no id used), and JobConflict when max_queued jobs wait
     // already.
     JobRecord submit(const JobInput& input);
@@ -129,6 +142,7 @@ class JobStore {
     struct Entry {
         JobRecord record;
         std::shared_ptr<JobJournal> journal;
+        std::shared_ptr<const ReadJob> read;  // from submit until its planning begins
     };
 
     Entry& entry(std::int64_t id);              // throws JobNotFound; lock held

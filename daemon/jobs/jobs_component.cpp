@@ -153,8 +153,9 @@ void JobsComponent::start() {
         .max_queued = config_.max_queued,
         .keep_completed = config_.keep_completed,
         .plan_retries = config_.plan_retries,
-        // A setting this cell cannot print refuses the submit at once.
-        .check_job = [cell = cell_](const planner::JobSpec& job) { print::print_settings(job, cell); }});
+        // A setting this cell cannot print refuses the submit at once; the settings made here are
+        // the plan's.
+        .settings_for = [cell = cell_](const planner::JobSpec& job) { return print::print_settings(job, cell); }});
     const LoadReport loaded = store_->load_all();
     for (const auto& w : loaded.warnings) spdlog::warn("jobs.load {}", w);
     spdlog::info("jobs.loaded {} jobs ({} to plan, {} interrupted, {} failed)", loaded.loaded.size(),

@@ -99,10 +99,10 @@ PlanJobResult plan_job(const PlanRequest& request, const planner::StepControl& c
                        const std::function<void(const planner::JobSpec&)>& on_loaded) {
     planner::Stopwatch clock;  // report.json's timings_s.total counts the job file too
     PlanJobResult r;
-    r.job = planner::load_job_file(request.job_file.string());
+    r.job = request.job ? *request.job : planner::load_job_file(request.job_file.string());
     if (request.strategy) r.job.planner.strategy = *request.strategy;
     if (request.fibre_budget) r.job.planner.fibre_budget = *request.fibre_budget;
-    r.settings = print::print_settings(r.job, request.cell);
+    r.settings = request.settings ? *request.settings : print::print_settings(r.job, request.cell);
     std::filesystem::create_directories(request.out_dir);
     print::PlanWriter out(request.out_dir);
     if (on_loaded) on_loaded(r.job);

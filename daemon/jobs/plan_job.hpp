@@ -32,6 +32,10 @@ enum class PlanStage { field, layers };
 
 struct PlanRequest {
     std::filesystem::path job_file;             // the job YAML; relative paths resolve beside it
+    // The job as its submission read it (the service's store), instead of reading job_file, and
+    // the print's settings made then, instead of making them again.
+    std::optional<planner::JobSpec> job;
+    std::optional<print::PrintSettings> settings;
     std::filesystem::path out_dir;              // the plan directory (created)
     PlanStage last_stage = PlanStage::layers;   // layers: toolpaths, preview, the print too
     std::optional<planner::Strategy> strategy;  // overrides the job's planner.strategy

@@ -157,6 +157,10 @@ void PlanRunner::plan_one(std::int64_t id) {
     };
     PlanRequest request;
     request.job_file = ticket->job_file;
+    if (ticket->job) {  // read once, at submit
+        request.job = ticket->job->spec;
+        request.settings = ticket->job->settings;
+    }
     request.out_dir = ticket->plan_dir;
     request.cell = options_.cell;
     request.executor = options_.executor;

@@ -314,6 +314,15 @@ JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
     return job;
 }
 
+void move_job_files(JobSpec& job, const std::string& from, const std::string& to) {
+    const auto moved = [&](std::string& path) {
+        if (path.empty()) return;
+        path = (fs::path(to) / fs::path(path).lexically_relative(from)).string();
+    };
+    moved(job.model.mesh_path);
+    moved(job.model.stress_path);
+}
+
 JobSpec load_job_file(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw config::ConfigError(path + ": cannot open job file");

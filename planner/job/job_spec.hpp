@@ -153,6 +153,10 @@ JobSpec load_job_file(const std::string& path);
 // it came with (in base_dir).
 enum class JobFiles { anywhere, submitted_only };
 
+// The job's files moved from folder `from` to folder `to` (the service's store renames a submitted
+// job's folder once it has an id): its file paths are made to point into `to`.
+void move_job_files(JobSpec& job, const std::string& from, const std::string& to);
+
 // The same from text (jobs submitted over the socket carry their YAML inline).
 JobSpec parse_job(const std::string& yaml_text, const std::string& origin,
                   const std::string& base_dir, JobFiles files);

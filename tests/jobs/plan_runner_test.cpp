@@ -90,6 +90,29 @@ TEST_F(PlanRunnerTest, PlansASubmittedJobWithProgress) {
     EXPECT_GE(*nice.begin(), 10);
 }
 
+// The service reads a job once, at its submission: the typed job and the print's settings made
+// then are what it plans, not the stored file read again (which the test spoils to tell).
+TEST_F(PlanRunnerTest, AJobIsReadOnceAtItsSubmissionAndPlannedAsReadThen) {
+    int settings_made = 0;
+    JobStoreOptions o = options();
+    o.settings_for = [&](const planner::JobSpec& job) {
+        ++settings_made;
+        return daemon::print::print_settings(job, daemon::CellConfig{});
+    };
+    JobStore store(o);
+    store.load_all();
+    PlanRunner runner(store, runner_options(1));
+    const std::int64_t id = store.submit(bar_).id;
+    std::ofstream(store.input_dir(id) / job_yaml_name) << "name: [not read again\n";
+    runner.enqueue(id);
+    runner.wait_idle();
+    const JobRecord r = store.get(id);
+    EXPECT_EQ(r.state, JobState::planned) << r.reason;
+    EXPECT_EQ(settings_made, 1);
+    EXPECT_THAT(read_file(store.plan_dir(id) / "report.json"), HasSubstr("\"bar\""));
+    EXPECT_TRUE(fs::exists(store.plan_dir(id) / "print.json"));
+}
+
 TEST_F(PlanRunnerTest, FailedPlanMarksThatJobFailedWhileAnotherPlans) {
     JobStore store(options());
     store.load_all();
