@@ -41,6 +41,7 @@ struct PrintRunner::Active {
     std::unique_ptr<print::PrintSession> session;
     Clock::time_point started = Clock::now();
     bool heaters_off = false;
+    bool held = false;  // paused by the operator or on a fault (the runner's thread only)
     bool fault_reported = false;
     bool reselect_tool = false;  // the board restarted: its tool is the default one
     std::atomic<std::int64_t> last_confirmed{0};
@@ -75,10 +76,10 @@ void PrintRunner::post(Command c) {
     cv_.notify_one();
 }
 
-void PrintRunner::start(std::int64_t id, Done done) { post({Command::Kind::start, id, std::move(done)}); }
-void PrintRunner::pause(std::int64_t id, Done done) { post({Command::Kind::pause, id, std::move(done)}); }
-void PrintRunner::resume(std::int64_t id, Done done) { post({Command::Kind::resume, id, std::move(done)}); }
-void PrintRunner::abort(std::int64_t id, Done done) { post({Command::Kind::abort, id, std::move(done)}); }
+void PrintRunner::start(std::int64_t id, Done done) { post({CommandKind::start, id, std::move(done)}); }
+void PrintRunner::pause(std::int64_t id, Done done) { post({CommandKind::pause, id, std::move(done)}); }
+void PrintRunner::resume(std::int64_t id, Done done) { post({CommandKind::resume, id, std::move(done)}); }
+void PrintRunner::abort(std::int64_t id, Done done) { post({CommandKind::abort, id, std::move(done)}); }
 
 void PrintRunner::abort_for_estop() {
     std::int64_t id = 0;
@@ -193,81 +194,155 @@ void PrintRunner::run() {
         off.wait_for(std::chrono::seconds(2));
 }
 
+namespace {
+PrintEvent event_of(PrintRunner::CommandKind kind) {
+    switch (kind) {
+        case PrintRunner::CommandKind::start: return PrintEvent::start;
+        case PrintRunner::CommandKind::pause: return PrintEvent::pause;
+        case PrintRunner::CommandKind::resume: return PrintEvent::resume;
+        case PrintRunner::CommandKind::abort: return PrintEvent::abort;
+    }
+    return PrintEvent::abort;
+}
+}  // namespace
+
+Situation PrintRunner::situation(PrintEvent event, std::int64_t id) {
+    Situation s;
+    {
+        std::lock_guard lock(mu_);
+        if (active_) {
+            s.on_cell = active_->held ? OnCell::held : OnCell::printing;
+            s.job_on_cell = active_->id;
+            s.fault_reported = active_->fault_reported;
+            s.heaters_off = active_->heaters_off;
+            s.tool_lost = active_->reselect_tool;
+        }
+    }
+    s.board_down = devices_.board().state() != drivers::DeviceState::active;
+    if (event == PrintEvent::pause && s.job_on_cell != id) {
+        try {
+            s.job_ended = jobs::is_ended(store_.get(id).state);
+        } catch (const jobs::JobNotFound&) {
+        }
+    }
+    return s;
+}
+
 void PrintRunner::handle(Command& c) {
     std::string error;
     try {
-        std::unique_lock lock(mu_);
-        const bool mine = active_ && active_->id == c.id;
-        lock.unlock();
-        switch (c.kind) {
-            case Command::Kind::start: start_job(c.id); break;
-            case Command::Kind::pause:
-                if (!mine && jobs::is_ended(store_.get(c.id).state)) {
-                    // The print ended between the request and here: the job completed instead.
-                    spdlog::info("print.pause_too_late job {}: it had ended", c.id);
-                    break;
-                }
-                if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
-                active_->session->pause();
-                // The robot brakes on the pause request: paused once it stands (or after 2 s).
-                {
-                    const auto deadline = Clock::now() + std::chrono::seconds(2);
-                    while (devices_.robot_io().snapshot().running && Clock::now() < deadline)
-                        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-                }
-                {
-                    std::lock_guard heaters_lock(mu_);
-                    heaters_.paused(c.id, Clock::now());
-                }
-                store_.apply(c.id, JobAction::pause_done);
-                break;
-            case Command::Kind::resume:
-                if (!mine) throw std::runtime_error("job " + std::to_string(c.id) + " is not on the cell");
-                try {
-                    if (devices_.board().state() != drivers::DeviceState::active)
-                        reconnect_board(*active_);
-                    if (active_->heaters_off) {
-                        auto heat = devices_.board().submit(devices_.extruder().prepare(
-                            active_->plan.print.settings.hotends(), true));
-                        if (heat.wait_for(std::chrono::minutes(10)) != std::future_status::ready ||
-                            !heat.get().ok())
-                            throw print::PrintError("resume: re-heating failed");
-                        active_->heaters_off = false;
-                    }
-                    if (active_->reselect_tool) {
-                        // The board restarted on its default tool: the head of the print's
-                        // last confirmed event again, before the feed goes on.
-                        if (const auto head = head_at(active_->plan.program, active_->last_confirmed)) {
-                            auto select = devices_.board().submit(devices_.extruder().select(*head));
-                            if (select.wait_for(std::chrono::seconds(30)) != std::future_status::ready ||
-                                !select.get().ok())
-                                throw print::PrintError("resume: the tool select after the board's restart failed");
-                        }
-                        active_->reselect_tool = false;
-                    }
-                    active_->session->resume();
-                    {
-                        std::lock_guard heaters_lock(mu_);
-                        heaters_.printing(c.id);
-                    }
-                    active_->fault_reported = false;
-                } catch (const std::exception& e) {
-                    store_.apply(c.id, JobAction::faulted, e.what());
-                    throw;
-                }
-                break;
-            case Command::Kind::abort:
-                if (mine) {
-                    active_->session->abort();
-                    finish("aborted by the operator", "aborted by the operator");
-                }
-                break;
+        const PrintEvent event = event_of(c.kind);
+        const Decision d = decide(event, c.id, situation(event, c.id));
+        if (!d.refusal.empty()) {
+            if (event == PrintEvent::start) {
+                spdlog::error("print.start_refused job {}: {}", c.id, d.refusal);
+                store_.apply(c.id, JobAction::start_refused, d.refusal);
+            }
+            throw std::runtime_error(d.refusal);
+        }
+        try {
+            for (const Step step : d.steps) carry_out(step, c.id);
+        } catch (const std::exception& e) {
+            // A resume that could not bring the cell back leaves the job held with the reason.
+            if (event == PrintEvent::resume) store_.apply(c.id, JobAction::faulted, e.what());
+            throw;
         }
     } catch (const std::exception& e) {
         error = e.what();
         spdlog::error("print.command job {}: {}", c.id, error);
     }
     if (c.done) c.done(error);
+}
+
+// One step of the recovery table (recovery.hpp) for job `id`; `reason`: a fault's.
+void PrintRunner::carry_out(Step step, std::int64_t id, const std::string& reason) {
+    switch (step) {
+        case Step::start_print: start_job(id); return;
+        case Step::note_ended:
+            // The print ended between the request and here: the job completed instead.
+            spdlog::info("print.pause_too_late job {}: it had ended", id);
+            return;
+        case Step::pause_print: {
+            active_->session->pause();
+            // The robot brakes on the pause request: paused once it stands (or after 2 s).
+            const auto deadline = Clock::now() + std::chrono::seconds(2);
+            while (devices_.robot_io().snapshot().running && Clock::now() < deadline)
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            {
+                std::lock_guard heaters_lock(mu_);
+                heaters_.paused(id, Clock::now());
+            }
+            active_->held = true;
+            store_.apply(id, JobAction::pause_done);
+            return;
+        }
+        case Step::reconnect_board: reconnect_board(*active_); return;
+        case Step::reheat: {
+            auto heat = devices_.board().submit(
+                devices_.extruder().prepare(active_->plan.print.settings.hotends(), true));
+            if (heat.wait_for(std::chrono::minutes(10)) != std::future_status::ready || !heat.get().ok())
+                throw print::PrintError("resume: re-heating failed");
+            active_->heaters_off = false;
+            return;
+        }
+        case Step::reselect_tool: {
+            // The board restarted on its default tool: the head of the print's last confirmed
+            // event again, before the feed goes on.
+            if (const auto head = head_at(active_->plan.program, active_->last_confirmed)) {
+                auto select = devices_.board().submit(devices_.extruder().select(*head));
+                if (select.wait_for(std::chrono::seconds(30)) != std::future_status::ready ||
+                    !select.get().ok())
+                    throw print::PrintError("resume: the tool select after the board's restart failed");
+            }
+            active_->reselect_tool = false;
+            return;
+        }
+        case Step::resume_print:
+            active_->session->resume();
+            {
+                std::lock_guard heaters_lock(mu_);
+                heaters_.printing(id);
+            }
+            active_->fault_reported = false;
+            active_->held = false;
+            return;
+        case Step::abort_print:
+            active_->session->abort();
+            finish("aborted by the operator", "aborted by the operator");
+            return;
+        case Step::hold: {
+            Active& a = *active_;
+            try {
+                a.session->pause();
+            } catch (const std::exception&) {
+                // Not printing: already held by a fault of its own.
+            }
+            a.fault_reported = true;
+            a.held = true;
+            {
+                std::lock_guard lock(mu_);
+                heaters_.paused(a.id, Clock::now());
+            }
+            spdlog::error("print.fault job {}: {}", a.id, reason);
+            store_.apply(a.id, JobAction::faulted, reason);
+            return;
+        }
+        case Step::finish: {
+            const auto shortfalls = active_->sync.stats.shortfalls;
+            finish("completed");  // result.json first: a client that sees `completed` finds it
+            if (shortfalls.empty())
+                store_.apply(id, JobAction::print_done);
+            else
+                store_.apply(id, JobAction::print_short, shortfall_reason(shortfalls));
+            return;
+        }
+    }
+}
+
+// A fault of the print on the cell (the session's, or its records'): held, as the table says.
+void PrintRunner::fault(Active& a, const std::string& reason) {
+    for (const Step step : decide(PrintEvent::fault, a.id, situation(PrintEvent::fault, a.id)).steps)
+        carry_out(step, a.id, reason);
 }
 
 // The board fell out while the job was paused (a reset, a cable pulled and put back): open the
@@ -315,10 +390,6 @@ void PrintRunner::start_job(std::int64_t id) {
         store_.apply(id, JobAction::start_refused, why);
         throw std::runtime_error(why);
     };
-    {
-        std::lock_guard lock(mu_);
-        if (active_) refuse("job " + std::to_string(active_->id) + " is on the cell");
-    }
     const jobs::JobRecord record = store_.get(id);
     auto a = std::make_unique<Active>();
     a->id = id;
@@ -423,12 +494,12 @@ void PrintRunner::poll_active() {
         } catch (const std::exception& e) {
             // A full disk or an I/O error: the print may not go on unrecorded. The cell is made
             // safe as for a device fault (robot held, feed stopped); resume once it is mended.
-            hold_on_fault(a, std::string("the job's state cannot be saved: ") + e.what());
+            fault(a, std::string("the job's state cannot be saved: ") + e.what());
         }
     }
     save_fibre_fed(a, st.sync.metering);
     if (const auto failed = a.journal->take_failure())
-        hold_on_fault(a, "the job's journal cannot be written: " + *failed);
+        fault(a, "the job's journal cannot be written: " + *failed);
     lock.lock();
     a.sync = st.sync;
     const json progress = progress_json();
@@ -436,19 +507,12 @@ void PrintRunner::poll_active() {
     if (on_progress_) on_progress_(a.id, progress);
 
     switch (st.phase) {
-        case print::PrintPhase::completed: {
-            const std::int64_t id = a.id;
-            const auto shortfalls = st.sync.stats.shortfalls;
-            finish("completed");  // result.json first: a client that sees `completed` finds it
-            if (shortfalls.empty())
-                store_.apply(id, JobAction::print_done);
-            else
-                store_.apply(id, JobAction::print_short, shortfall_reason(shortfalls));
+        case print::PrintPhase::completed:
+            for (const Step step :
+                 decide(PrintEvent::completed, a.id, situation(PrintEvent::completed, a.id)).steps)
+                carry_out(step, a.id);
             return;
-        }
-        case print::PrintPhase::faulted:
-            hold_on_fault(a, st.reason);
-            break;
+        case print::PrintPhase::faulted: fault(a, st.reason); break;
         default: break;
     }
 }
@@ -523,22 +587,6 @@ void PrintRunner::save_fibre_fed(Active& a, const sync::MeteringStatus& m) {
     if (m.e_fed_mm <= 0) return;
     a.journal->fed({m.sequence, m.e_fed_mm});  // queued: a failed write shows in poll_active
     a.fed_saved = {m.sequence, m.e_fed_mm};
-}
-
-void PrintRunner::hold_on_fault(Active& a, const std::string& reason) {
-    if (a.fault_reported) return;
-    try {
-        a.session->pause();
-    } catch (const std::exception&) {
-        // Not printing: already held by a fault of its own.
-    }
-    a.fault_reported = true;
-    {
-        std::lock_guard lock(mu_);
-        heaters_.paused(a.id, Clock::now());
-    }
-    spdlog::error("print.fault job {}: {}", a.id, reason);
-    store_.apply(a.id, JobAction::faulted, reason);
 }
 
 // The print ended (completed or aborted): its figures go to result.json beside state.json, and

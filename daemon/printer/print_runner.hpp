@@ -15,8 +15,10 @@
 //   heaters: HeaterPolicy says when they go off (a print's end, a long pause, an idle cell);
 //               the runner sends the M104 S0s, and at a service stop too.
 //
-// Commands come from the API's threads and return at once; their outcome is reported through the
-// callback (the job's transition, or the reason it could not be done).
+// What each command and device event does on the cell, held print and recovery included, is the
+// recovery table's (recovery.hpp); the runner carries out its steps. Commands come from the
+// API's threads and return at once; their outcome is reported through the callback (the job's
+// transition, or the reason it could not be done).
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/jobs/job_store.hpp"
@@ -24,6 +26,7 @@
 #include "daemon/print/print_session.hpp"
 #include "daemon/devices/cell_devices.hpp"
 #include "daemon/printer/heater_policy.hpp"
+#include "daemon/printer/recovery.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -86,9 +89,11 @@ class PrintRunner {
     // comes back interrupted and resumable; joins the thread.
     void stop();
 
+    enum class CommandKind { start, pause, resume, abort };
+
   private:
     struct Command {
-        enum class Kind { start, pause, resume, abort } kind;
+        CommandKind kind;
         std::int64_t id;
         Done done;
     };
@@ -97,10 +102,13 @@ class PrintRunner {
     void post(Command c);
     void run();
     void handle(Command& c);
+    // What the recovery table is told of the cell and of job `id` (recovery.hpp).
+    Situation situation(PrintEvent event, std::int64_t id);
+    void carry_out(Step step, std::int64_t id, const std::string& reason = "");
+    void fault(Active& a, const std::string& reason);
     void start_job(std::int64_t id);
     void reconnect_board(Active& a);
     void cut_left_fibre(std::int64_t id);
-    void hold_on_fault(Active& a, const std::string& reason);
     void save_fibre_fed(Active& a, const sync::MeteringStatus& m);
     void poll_active();
     // `outcome`: how the print ended, for the heaters' log ("completed", "aborted by the
