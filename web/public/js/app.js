@@ -39,7 +39,11 @@ function glance(status) {
   document.getElementById("glance-heaters").textContent = h.on ? `heaters on: ${h.why}${off}` : "heaters off";
 }
 
+// A page rendered on the connection that is open now (its subscriptions are this connection's).
+let routedSinceOpen = false;
+
 async function onConnected() {
+  routedSinceOpen = false;
   try {
     await rpc.subscribe(["cell", "log"]);
     const status = await rpc.call("cell.status");
@@ -48,7 +52,9 @@ async function onConnected() {
   } catch (e) {
     console.warn(e);
   }
-  route();
+  // A page the user went to while the status came rendered on this connection already: rendering
+  // it again would throw away what was begun in it (a half-filled submit form).
+  if (!routedSinceOpen) route();
 }
 
 rpc.on("notify.cell_status", (status) => {
@@ -61,6 +67,7 @@ rpc.on("notify.log", (line) => {
 });
 
 function route() {
+  routedSinceOpen = true;
   const [, name = "cell", arg] = location.hash.split("/");
   const module = { cell: cellPage, jobs: jobsPage, job: jobPage, log: logPage }[name] || cellPage;
   for (const a of document.querySelectorAll("nav a"))
