@@ -26,9 +26,12 @@ void set_time_critical_priority(int priority) { priority_ = std::clamp(priority,
 
 int time_critical_priority() { return priority_; }
 
+void name_this_thread(std::string_view name) {
+    ::pthread_setname_np(::pthread_self(), std::string(name.substr(0, 15)).c_str());
+}
+
 void make_thread_time_critical(std::string_view thread) {
-    // The name shows in top -H, ps -L and /proc/<pid>/task/*/comm (at most 15 characters).
-    ::pthread_setname_np(::pthread_self(), std::string(thread.substr(0, 15)).c_str());
+    name_this_thread(thread);
     const int priority = priority_;
     if (priority == 0) return;
     sched_param param{};

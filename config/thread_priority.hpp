@@ -23,7 +23,11 @@ namespace fibrecell::config {
 void set_time_critical_priority(int priority);
 int time_critical_priority();
 
-// Names the calling thread `thread` (its first 15 characters: ps -L, top -H) and puts it at the
+// Names the calling thread (its first 15 characters): what ps -L, top -H and
+// /proc/<pid>/task/*/comm show, and what docs/service.md's list of threads calls it.
+void name_this_thread(std::string_view name);
+
+// Names the calling thread `thread` (name_this_thread) and puts it at the
 // time-critical priority. Logs once per process when the real-time policy is refused, and why;
 // never throws.
 void make_thread_time_critical(std::string_view thread);

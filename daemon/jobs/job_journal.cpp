@@ -1,6 +1,7 @@
 #include "daemon/jobs/job_journal.hpp"
 
 #include "config/durable_file.hpp"
+#include "config/thread_priority.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -108,7 +109,11 @@ JobJournal::~JobJournal() {
 void JobJournal::queue(std::string line) {
     queued_.push_back(std::move(line));
     ++queued_count_;
-    if (!writer_.joinable()) writer_ = std::thread([this] { write_queued(); });
+    if (!writer_.joinable())
+        writer_ = std::thread([this] {
+            config::name_this_thread("jobs.journal");
+            write_queued();
+        });
 }
 
 void JobJournal::write_queued() {

@@ -14,7 +14,11 @@ namespace fibrecell::daemon::jobs {
 PlanRunner::PlanRunner(JobStore& store, PlanRunnerOptions options)
     : store_(store), options_(std::move(options)) {
     const int n = std::max(1, options_.workers);
-    for (int i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+    for (int i = 0; i < n; ++i)
+        workers_.emplace_back([this] {
+            config::name_this_thread("jobs.plan");
+            work();
+        });
 }
 
 PlanRunner::~PlanRunner() {

@@ -26,6 +26,7 @@ ThreadPool::ThreadPool(ThreadPoolOptions options) {
                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     for (int i = 0; i < n; ++i)
         threads_.emplace_back([this, nice = options.nice] {
+            config::name_this_thread("jobs.pool");
             config::lower_thread_priority(nice);
             work();
         });

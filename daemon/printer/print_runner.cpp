@@ -1,6 +1,7 @@
 #include "daemon/printer/print_runner.hpp"
 
 #include "config/durable_file.hpp"
+#include "config/thread_priority.hpp"
 #include "daemon/printer/print_figures.hpp"
 
 #include <spdlog/spdlog.h>
@@ -55,7 +56,10 @@ PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const Cell
                          PrintRunnerOptions options)
     : store_(store), devices_(devices), cell_(cell), options_(options),
       heaters_(options.heaters, Clock::now()) {
-    thread_ = std::thread([this] { run(); });
+    thread_ = std::thread([this] {
+        config::name_this_thread("print.runner");
+        run();
+    });
 }
 
 PrintRunner::~PrintRunner() { stop(); }

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "config/thread_priority.hpp"
 #include "drivers/abb/rws/digest.hpp"
 #include "drivers/abb/rws/rws_json.hpp"
 #include "drivers/sim/rws/rws_routes.hpp"
@@ -344,6 +345,7 @@ RwsServer::RwsServer(std::shared_ptr<RwsBackend> backend, RwsServerConfig config
     }
     s.accept_next();
     s.thread = std::thread([&s] {
+        config::name_this_thread("sim.rws");
         try {
             s.io.run();
         } catch (const std::exception& e) {
