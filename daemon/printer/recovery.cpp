@@ -117,15 +117,6 @@ Decision decide(PrintEvent event, std::int64_t job, const Situation& s) {
     return {};
 }
 
-std::string_view to_string(OnCell on_cell) {
-    switch (on_cell) {
-        case OnCell::nothing: return "nothing";
-        case OnCell::printing: return "printing";
-        case OnCell::held: return "held";
-    }
-    return "?";
-}
-
 std::string_view to_string(PrintEvent event) {
     switch (event) {
         case PrintEvent::start: return "start";

@@ -61,7 +61,6 @@ struct Decision {
 // The one table: what `event` for job `job` does in situation `s`.
 Decision decide(PrintEvent event, std::int64_t job, const Situation& s);
 
-std::string_view to_string(OnCell on_cell);
 std::string_view to_string(PrintEvent event);
 std::string_view to_string(Step step);
 
