@@ -36,7 +36,8 @@ function glance(status) {
   // Why the hotends are on (cell.status heaters: docs/service.md, "Heaters").
   const h = status.heaters || {};
   const off = h.off_in_s === null || h.off_in_s === undefined ? "" : `, off in ${formatDuration(h.off_in_s)}`;
-  document.getElementById("glance-heaters").textContent = h.on ? `heaters on: ${h.why}${off}` : "heaters off";
+  const heaters = document.getElementById("glance-heaters");
+  heaters.textContent = heaters.title = h.on ? `heaters on: ${h.why}${off}` : "heaters off";  // the title: when cut
 }
 
 // A page rendered on the connection that is open now (its subscriptions are this connection's).
