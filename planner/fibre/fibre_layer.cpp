@@ -5,6 +5,7 @@
 #include "planner/fibre/curve_spacing.hpp"
 #include "planner/fibre/end_joins.hpp"
 #include "planner/fibre/fibre_region.hpp"
+#include "planner/fibre/gap_fill.hpp"
 #include "planner/fibre/laid_fibre.hpp"
 #include "planner/fibre/layer_pieces.hpp"
 #include "planner/fibre/path_chains.hpp"
@@ -19,6 +20,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <iterator>
 #include <tuple>
 
 namespace fibrecell::planner {
@@ -170,6 +172,15 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
             laid_length += path_length(kept.back());
         }
         if (length >= options.cutter_distance_mm && laid_length < length - 1e-6) ++out.spacing_cuts;
+    }
+    if (options.stripes) {
+        clock.lap();
+        GapFill fill = fill_gaps(layer, out.field, kept, laid,
+                                 {.spacing_mm = options.spacing_mm,
+                                  .cutter_distance_mm = options.cutter_distance_mm});
+        out.gap_fill_paths = fill.paths.size();
+        std::move(fill.paths.begin(), fill.paths.end(), std::back_inserter(kept));
+        out.timings.gap_fill = clock.lap();
     }
     out.dropped_short += laid.dropped_short();
     paths = std::move(kept);

@@ -54,8 +54,9 @@ bool LaidFibre::keeps_itself(const std::vector<Eigen::Vector2d>& loop) const {
         bool crowded = false;
         own.around(loop[k], [&](const TaggedSegment& s) {
             const double apart = std::abs(at[static_cast<std::size_t>(s.tag)] - at[k]);
-            // Either end of the segment more than 4W away round the loop, the shorter way.
-            if (std::min(apart, length - apart) > 4 * w_ + w_ / 4)
+            // Any of the segment (its start, or W/4 on) more than 4W away round the loop, the
+            // shorter way.
+            if (std::min(apart, length - apart) > 4 * w_ - w_ / 4)
                 crowded = crowded || point_segment_distance(loop[k], s.a, s.b) < keep_;
         });
         if (crowded) return false;
@@ -120,7 +121,9 @@ std::vector<LaidPiece> LaidFibre::lay_open(const std::vector<Eigen::Vector2d>& p
     for (std::size_t k = 0; k < pts.size(); ++k) {
         cancellation_point();
         if (k > 0) along += (pts[k] - pts[k - 1]).norm();
-        while (!pending.empty() && pending.front().along <= along - 4 * w_) {
+        // A W/4 early: a point between this sample and the last, 4W past a segment's start,
+        // is then measured against it at both samples (else it could come 3% nearer than W).
+        while (!pending.empty() && pending.front().along <= along - 4 * w_ + w_ / 4) {
             own.insert({pending.front().a, pending.front().b, 0});
             pending.pop_front();
         }
