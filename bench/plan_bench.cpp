@@ -1,6 +1,7 @@
 // Benchmark of the whole offline plan (job file -> durable plan directory, exactly what
 // `fibrecell plan` does: daemon/jobs/plan_job) against the paper's Table 1: the bundled Loop
-// example and a Shell-sized part (about 112k tets, 12 CCF layers).
+// example and a Shell-sized part (about 112k tets, 12 CCF layers), each with the field strategy and
+// with field-dense (/d).
 // Release build:  build/release/bench/plan_bench
 
 #include "bench_parts.hpp"
@@ -23,6 +24,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,12 +76,13 @@ void plan_and_print(const char* name, const fs::path& job_file, const PaperRow& 
     const FieldStageResult& field = r.field;
     const auto& s = r.layers->stats;
     std::printf(
-        "%-6s %7zu %2d+%2d | %5.2f %5.2f %6.3f | %6.3f %6.3f %6.3f %6.3f (%6.3f, %4.0fx) | "
+        "%-7s %7zu %2d+%2d | %5.2f %5.2f %6.3f | %6.3f %6.3f %6.3f %6.3f (%6.3f, %4.0fx) | "
         "%6.2f (%7.1f, %4.0fx) | %6.0f | %5.1f m %5.3f\n",
         name, field.model.mesh.tet_count(), s.pla_layers, s.ccf_layers, field.timings.fea,
         field.timings.read, s.total_s, s.mean_vector_field, s.mean_scalar_field, s.mean_extraction,
         s.mean_connection, paper.extraction_s,
-        paper.extraction_s / std::max(s.mean_extraction, 1e-9), total, paper.total_s,
+        s.mean_extraction > 0 ? paper.extraction_s / s.mean_extraction : 0.0,  // 0: stripes
+        total, paper.total_s,
         paper.total_s / total, peak_memory_mb(), s.fibre_length_mm / 1000.0, s.quality.alignment());
 }
 
@@ -105,6 +109,24 @@ void compare_strategies(const JobSpec& loop, jobs::ThreadPool& pool) {
     std::printf("\n");
 }
 
+// The job file with the field-dense strategy, written beside `dir` (its mesh named by its full
+// path, so that it reads the same file).
+fs::path dense_copy(const fs::path& job_file, const fs::path& dir) {
+    std::ifstream in(job_file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = text.find(from);
+        if (at == std::string::npos)
+            throw std::runtime_error(job_file.string() + ": no '" + from + "' to replace");
+        text.replace(at, from.size(), to);
+    };
+    replace("strategy: field\n", "strategy: field-dense\n");
+    replace("mesh: loop.msh", "mesh: " + (job_file.parent_path() / "loop.msh").string());
+    const fs::path out = dir / (job_file.stem().string() + "-dense.yaml");
+    fibrecell::config::write_file_durably(out, text);
+    return out;
+}
+
 // A Shell-sized Loop-like plate (about 112k tets), stress from a 2 kN pull, written as binary
 // VTK so the plan reads it like a user's file.
 std::string write_shell_sized_part(const fs::path& dir) {
@@ -122,7 +144,7 @@ int main() {
     const fs::path tmp = fs::temp_directory_path() / "fibrecell-plan-bench";
     fs::create_directories(tmp);
     std::printf("Whole offline plan, Release, 2 threads (paper: i7-9750H, 6 cores)\n\n");
-    std::printf("%-6s %7s %5s | %5s %5s %6s | %6s %6s %6s %6s %15s | %23s | %6s | %13s\n", "part",
+    std::printf("%-7s %7s %5s | %5s %5s %6s | %6s %6s %6s %6s %15s | %23s | %6s | %13s\n", "part",
                 "tets", "layers", "fea", "read", "layers", "field", "scalar", "extr.", "conn.",
                 "(paper, ratio)", "total s (paper, ratio)", "MB", "fibre  align");
 
@@ -130,6 +152,10 @@ int main() {
     const fs::path loop_file = fibrecell::test::source_path("examples/loop/loop.job.yaml");
     std::string stages;
     plan_and_print("Loop", loop_file, {"Loop", 32473, 8.210, 130.862}, pool, tmp / "loop", stages);
+    // The field-dense strategy on the same parts (issue 37's budget: at most 3 s, at most twice
+    // the field strategy's time on the same part).
+    plan_and_print("Loop/d", dense_copy(loop_file, tmp), {"Loop", 32473, 8.210, 130.862}, pool,
+                   tmp / "loop-dense", stages);
 
     compare_strategies(load_job_file(loop_file.string()), pool);
     const std::string mesh = write_shell_sized_part(tmp);
@@ -137,6 +163,11 @@ int main() {
                                           "name: shell-sized\nmodel:\n  mesh: " + mesh + "\n");
     plan_and_print("Shell", tmp / "shell.job.yaml", {"Shell", 112080, 24.077, 758.140}, pool,
                    tmp / "shell", stages);
+    fibrecell::config::write_file_durably(
+        tmp / "shell-dense.job.yaml",
+        "name: shell-sized\nmodel:\n  mesh: " + mesh + "\nplanner:\n  strategy: field-dense\n");
+    plan_and_print("Shell/d", tmp / "shell-dense.job.yaml", {"Shell", 112080, 24.077, 758.140},
+                   pool, tmp / "shell-dense", stages);
     std::printf("\n%s", stages.c_str());
     fs::remove_all(tmp);
     return 0;

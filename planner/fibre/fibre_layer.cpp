@@ -173,7 +173,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         }
         if (length >= options.cutter_distance_mm && laid_length < length - 1e-6) ++out.spacing_cuts;
     }
-    if (options.stripes) {
+    if (options.stripes && options.gap_fill) {
         clock.lap();
         GapFill fill = fill_gaps(layer, out.field, kept, laid,
                                  {.spacing_mm = options.spacing_mm,

@@ -30,6 +30,9 @@ struct FibreLayerOptions {
     // scalar field's isocurves; the connection and the W rule are the same.
     bool stripes = false;
     double stripe_period_mm = 0;  // 0: the default, 1.2 W (fibre_layer.cpp)
+    // Then fill what the stripes left bare (gap_fill.hpp); off under a fibre budget, which sets
+    // the fibre by the stripes' period.
+    bool gap_fill = true;
 };
 
 struct FibreLayerTimings {  // seconds, the paper's Table 1 columns

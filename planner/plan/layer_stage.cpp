@@ -188,10 +188,14 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             const auto edges = edges_of_any(region_edges);
             // The field strategy's knob is its density (field_density); the stripes' is the
             // fraction of W/period: below 1 they lie further apart.
+            const double target = budget_target_mm(job.planner.fibre_budget, out.outlines[i],
+                                                   ccf_ordinal[i], baseline);
             const auto fibre_at = [&](double knob) {
                 FibreLayerOptions o = fibre;
                 if (fibre.stripes) {
                     if (knob < 1) o.stripe_period_mm = fibre.spacing_mm / knob;
+                    // A budget thins the stripes; filling what they leave would undo it.
+                    o.gap_fill = target <= 0;
                 } else {
                     const FieldDensity d = field_density(knob, job.planner.p);
                     o.field.p = d.p;
@@ -200,8 +204,6 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                 return plan_fibre_layer(out.sections[i], v_placed, field.field.sigma_e,
                                         field.v_defined, edges, o);
             };
-            const double target = budget_target_mm(job.planner.fibre_budget, out.outlines[i],
-                                                   ccf_ordinal[i], baseline);
             FibreLayer r;
             if (target > 0) {
                 w.budget.emplace();

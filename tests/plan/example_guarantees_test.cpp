@@ -368,6 +368,20 @@ TEST(ExampleGuarantees, Loop) {
     EXPECT_GE(min_layer_ratio(both), 0.38);
 }
 
+// The field-dense strategy on the Loop: the guarantees, and the figures issue 37 asks for
+// (coverage 0.90, mean path 500 mm: not yet; these floors keep what it has, 0.72).
+TEST(ExampleGuarantees, LoopFieldDense) {
+    JobSpec job = load_job_file(fibrecell::test::source_path("examples/loop/loop.job.yaml"));
+    job.planner.strategy = Strategy::field_dense;
+    const Laid dense = check_guarantees(job, fibrecell::test::field_stage_of(job));
+    const LayerStageStats& s = dense.stats;
+    EXPECT_EQ(s.ccf_layers, 13);
+    std::cout << "figures: Loop field-dense coverage " << s.coverage.coverage() << " (covered "
+              << s.coverage.covered_fraction() << "), " << s.fibre_paths << " paths\n";
+    EXPECT_GT(s.coverage.coverage(), 0.68);
+    EXPECT_GT(s.quality.alignment(), 0.97);
+}
+
 // The reference data: real meshes whose sections change with height, with islands and holes.
 // Skipped when the shared folder is not beside the repository.
 TEST(ReferenceGuarantees, Bunnyhead) {
@@ -390,6 +404,17 @@ TEST(ReferenceGuarantees, Bunnyhead) {
     // beside it (32% when they were dropped).
     EXPECT_GT(both.field.stats.fibre_rings_extended, 0);
     EXPECT_GT(both.field.stats.boundaries[0].second.coverage(), 0.9);
+}
+
+// The field-dense strategy on the bunny's head, with the same guarantees.
+TEST(ReferenceGuarantees, BunnyheadFieldDense) {
+    FIBRECELL_SKIP_WITHOUT_REFERENCE_FEA("bunnyhead");
+    JobSpec job = reference_job("bunnyhead");
+    job.planner.strategy = Strategy::field_dense;
+    const Laid dense = check_guarantees(job, fibrecell::test::field_stage_of(job));
+    std::cout << "figures: bunnyhead field-dense coverage " << dense.stats.coverage.coverage()
+              << " (covered " << dense.stats.coverage.covered_fraction() << ")\n";
+    EXPECT_GT(dense.stats.coverage.coverage(), 0.5);
 }
 
 TEST(ReferenceGuarantees, YogaNew) {
@@ -425,6 +450,6 @@ TEST(ReferenceGuarantees, YogaNew) {
               << both.field.stats.coverage.coverage() << ", contour-zigzag "
               << both.baseline.stats.coverage.coverage() << "\n";
     // 0.38 of the fibre region (contour-zigzag 1.00, the field strategy 0.19).
-    EXPECT_GT(dense.stats.coverage.coverage(), 0.3);
+    EXPECT_GT(dense.stats.coverage.coverage(), 0.65);
 }
 
