@@ -5,7 +5,6 @@
 # directory has none. Seconds each, ASan build, idle 2-core machine (tools/build-times.sh prints
 # them again); a test missing here only starts later.
 set(fibrecell_slow_tests
-    "ExampleGuarantees.LoopFieldDense=25"
     "MechanicsStage.OnTheLoopTheFieldBeatsContourZigzagAtTheSameFibre=19"
     "AvrBoardPrint.AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable=17"
     "ServiceTest.KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRepeats=15"
@@ -13,6 +12,7 @@ set(fibrecell_slow_tests
     "ExampleGuarantees.Loop=15"
     "ReferenceGuarantees.Bunnyhead=14"
     "ReferenceGuarantees.BunnyheadFieldDense=12"
+    "ExampleGuarantees.LoopFieldDense=12"
     "HeaterTest.TheHotendsGoOffWhenAPrintCompletesIsAbortedOrIsGivenUpAfterAFault=12"
     "ServiceTest.SubmitStartWatchFollowsTheJobToItsOutcome=12"
     "Gt2560Avr.AnInvertedDirectionBuildFeedsForwardOnlyWhenTheSimulatorIsToldSo=9"

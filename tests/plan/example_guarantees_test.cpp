@@ -370,12 +370,16 @@ TEST(ExampleGuarantees, Loop) {
 
 // The field-dense strategy on the Loop: the guarantees, and the figures issue 37 asks for
 // (coverage 0.90, mean path 500 mm: not yet; these floors keep what it has, 0.72).
+// Every 4th layer only (the Loop's sections are all alike): the dense layers take 3 s of the
+// whole plan in Release, 40 s of the test under ASan.
 TEST(ExampleGuarantees, LoopFieldDense) {
     JobSpec job = load_job_file(fibrecell::test::source_path("examples/loop/loop.job.yaml"));
     job.planner.strategy = Strategy::field_dense;
+    job.layers.ccf_on_all = false;
+    job.layers.ccf_every = 4;
     const Laid dense = check_guarantees(job, fibrecell::test::field_stage_of(job));
     const LayerStageStats& s = dense.stats;
-    EXPECT_EQ(s.ccf_layers, 13);
+    EXPECT_EQ(s.ccf_layers, 4);
     std::cout << "figures: Loop field-dense coverage " << s.coverage.coverage() << " (covered "
               << s.coverage.covered_fraction() << "), " << s.fibre_paths << " paths\n";
     EXPECT_GT(s.coverage.coverage(), 0.68);
