@@ -5,6 +5,7 @@
 #include "planner/fibre/gap_fill.hpp"
 
 #include "layer_test_mesh.hpp"
+#include "path_samples.hpp"
 #include "spacing.hpp"
 
 #include <gtest/gtest.h>
@@ -23,33 +24,10 @@ using fibrecell::planner::layer_test::grid_layer;
 
 constexpr double cutter = 20;
 
-struct Point {
-    Eigen::Vector2d p;
-    int path;
-    double along;
-    double loop = 0;  // the path's length when it is closed (apart: the shorter way round)
-};
+using Point = ::fibrecell::test::PathSample;
 
 std::vector<Point> resampled(const std::vector<Toolpath>& paths) {
-    std::vector<Point> out;
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        std::vector<Eigen::Vector2d> pts = paths[i].points;
-        if (paths[i].closed) pts.push_back(pts.front());
-        double along = 0;
-        for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-            const double l = (pts[k + 1] - pts[k]).norm();
-            const int n = std::max(1, static_cast<int>(std::ceil(l / (W / 16))));
-            for (int j = 0; j < n; ++j)
-                out.push_back({pts[k] + (pts[k + 1] - pts[k]) * (double(j) / n),
-                               static_cast<int>(i), along + l * j / n});
-            along += l;
-        }
-        if (!paths[i].closed) out.push_back({pts.back(), static_cast<int>(i), along});
-        if (paths[i].closed)
-            for (Point& q : out)
-                if (q.path == static_cast<int>(i)) q.loop = along;
-    }
-    return out;
+    return ::fibrecell::test::path_samples(paths);
 }
 
 double length(const Toolpath& p) {
@@ -71,7 +49,7 @@ LayerField uniform_field(const LayerMesh& m, double angle) {
 // The smallest distance between points of two different paths, and of one path more than 4W
 // apart along it (LaidFibre's rule for a path coming back on itself), capped at W: pairs are
 // looked for in a grid of W cells.
-std::pair<double, double> spacing(const std::vector<Point>& pts) {
+std::pair<double, double> closest_approach(const std::vector<Point>& pts) {
     std::map<std::pair<long, long>, std::vector<std::size_t>> cells;
     const auto cell = [](const Eigen::Vector2d& p) {
         return std::pair<long, long>(std::lround(std::floor(p.x() / W)), std::lround(std::floor(p.y() / W)));
@@ -87,8 +65,7 @@ std::pair<double, double> spacing(const std::vector<Point>& pts) {
                 for (std::size_t b : it->second) {
                     if (b <= a) continue;
                     const double d = (pts[a].p - pts[b].p).norm();
-                    double apart = std::abs(pts[a].along - pts[b].along);
-                    if (pts[a].loop > 0) apart = std::min(apart, pts[a].loop - apart);
+                    const double apart = ::fibrecell::test::apart_along(pts[a], pts[b]);
                     if (pts[a].path != pts[b].path) between = std::min(between, d);
                     else if (apart > 4 * W) within = std::min(within, d);
                 }
@@ -128,7 +105,7 @@ TEST(GapFill, ABareLayerIsFilledAlongItsStressWApartAndInsideItsOutline) {
         EXPECT_GE(q.p.y(), W / 2 - 1e-6);
         EXPECT_LE(q.p.y(), 30 - W / 2 + 1e-6);
     }
-    const auto [between, within] = spacing(pts);
+    const auto [between, within] = closest_approach(pts);
     EXPECT_GE(between, 0.995 * W);
     EXPECT_GE(within, 0.995 * W);
 }
@@ -151,7 +128,7 @@ TEST(GapFill, WhatIsLaidAlreadyKeepsItsPlaceAndTheFillKeepsWFromIt) {
     for (const Toolpath& p : fill.paths) fibre += length(p);
     // Inside the ring (1.5 W in), W from it: 55 x 25 mm less the band round the middle path.
     EXPECT_GT(fibre * W / (55 * 25 - 2 * W * 50), 0.8) << fibre << " mm";
-    const auto [between, within] = spacing(resampled(all));
+    const auto [between, within] = closest_approach(resampled(all));
     EXPECT_GE(between, 0.995 * W);
     EXPECT_GE(within, 0.995 * W);
 }

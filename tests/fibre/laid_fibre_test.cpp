@@ -2,6 +2,7 @@
 // along it, is cut; measured here on points resampled from the output, brute force.
 
 #include "planner/fibre/laid_fibre.hpp"
+#include "path_samples.hpp"
 #include "spacing.hpp"
 
 #include <gtest/gtest.h>
@@ -15,29 +16,10 @@ namespace {
 
 using ::fibrecell::test::W;
 
-struct Sample {
-    Eigen::Vector2d p;
-    int path;
-    double along;
-};
+using Sample = ::fibrecell::test::PathSample;
 
 std::vector<Sample> samples(const std::vector<LaidPiece>& pieces, int first_path = 0) {
-    std::vector<Sample> out;
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-        std::vector<Eigen::Vector2d> pts = pieces[i].points;
-        if (pieces[i].closed) pts.push_back(pts.front());
-        double along = 0;
-        for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-            const double l = (pts[k + 1] - pts[k]).norm();
-            const int n = std::max(1, static_cast<int>(std::ceil(l / (W / 16))));
-            for (int j = 0; j < n; ++j)
-                out.push_back({pts[k] + (pts[k + 1] - pts[k]) * (double(j) / n),
-                               first_path + static_cast<int>(i), along + l * j / n});
-            along += l;
-        }
-        out.push_back({pts.back(), first_path + static_cast<int>(i), along});
-    }
-    return out;
+    return ::fibrecell::test::path_samples(pieces, first_path);
 }
 
 // Smallest distance between samples of different paths, or of one path more than 4W apart
@@ -46,7 +28,7 @@ double spacing(const std::vector<Sample>& s) {
     double best = 1e9;
     for (std::size_t a = 0; a < s.size(); ++a)
         for (std::size_t b = a + 1; b < s.size(); ++b)
-            if (s[a].path != s[b].path || std::abs(s[a].along - s[b].along) > 4 * W)
+            if (s[a].path != s[b].path || ::fibrecell::test::apart_along(s[a], s[b]) > 4 * W)
                 best = std::min(best, (s[a].p - s[b].p).norm());
     return best;
 }
