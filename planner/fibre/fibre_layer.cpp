@@ -150,7 +150,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         clock.lap();
         const FibreRegion region = fibre_region(
             layer_outline(piece.mesh), piece_selected(piece, selected_edges, layer.vertices.size()),
-            {.spacing_mm = options.spacing_mm});
+            {.spacing_mm = options.spacing_mm, .rings_at_edge = options.rings_at_edge});
         connect_piece(region, std::move(curves), options, out, paths);
         out.timings.connection += clock.lap();
     }

@@ -33,6 +33,7 @@ struct FibreLayerOptions {
     // Then fill what the stripes left bare (gap_fill.hpp); off under a fibre budget, which sets
     // the fibre by the stripes' period.
     bool gap_fill = true;
+    bool rings_at_edge = false;  // FibreRegionOptions::rings_at_edge (field-dense: true)
 };
 
 struct FibreLayerTimings {  // seconds, the paper's Table 1 columns

@@ -98,11 +98,12 @@ FibreRegion fibre_region(const LayerOutline& outline, const std::vector<Segment2
         out.stress = out.part;
         return out;
     }
-    out.stress = region_difference(out.part, segment_band(selected, 2.5 * w + chord, offset));
-    const SelectedDistance distance(selected, 3 * w);
-    out.ring_loops = offset_region(outline.loops, -1.5 * w, offset);
-    out.rings = runs_on_selected(out.ring_loops, distance, 1.5 * w, w);
-    out.link_curves = runs_on_selected(out.stress, distance, 2.5 * w + chord, w);
+    const double ring = options.rings_at_edge ? w / 2 + chord : 1.5 * w;
+    out.stress = region_difference(out.part, segment_band(selected, ring + w + chord, offset));
+    const SelectedDistance distance(selected, ring + 1.5 * w);
+    out.ring_loops = offset_region(outline.loops, -ring, offset);
+    out.rings = runs_on_selected(out.ring_loops, distance, ring, w);
+    out.link_curves = runs_on_selected(out.stress, distance, ring + w + chord, w);
     return out;
 }
 

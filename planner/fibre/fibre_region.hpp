@@ -15,6 +15,9 @@ namespace fibrecell::planner {
 struct FibreRegionOptions {
     double spacing_mm = 1.0;          // W
     double arc_tolerance_mm = 0.002;  // round joins of the offsets
+    // The rings with their ribbon's edge on the outline (W/2 from it, and the chords' allowance)
+    // instead of the paper's d = 1.5W; the stress fibres then keep W from them as before.
+    bool rings_at_edge = false;
 };
 
 struct FibreRegion {

@@ -144,6 +144,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     fibre.crowded_fraction = job.planner.crowded_fraction;
     fibre.cutter_distance_mm = options.cutter_distance_mm;
     fibre.stripes = job.planner.strategy == Strategy::field_dense;
+    fibre.rings_at_edge = fibre.stripes;  // dense: no bare W/2 strip along each ringed edge
     const std::vector<SelectedFaces> boundary_fibre_faces =
         boundary_fibre_selection(job, field.model, placed);
 

@@ -169,10 +169,11 @@ struct Laid {
     std::vector<double> layer_fibre_mm;  // per CCF layer, in order
 };
 
-// Where the strategy puts boundary rings: the field strategy one at 1.5W, contour-zigzag its
-// rings at W/2 + iW.
+// Where the strategy puts boundary rings: the field strategy one at 1.5W, field-dense one at
+// W/2, contour-zigzag its rings at W/2 + iW.
 double ring_target(Strategy strategy, double d, double w) {
-    if (strategy != Strategy::contour_zigzag) return 1.5 * w;
+    if (strategy == Strategy::field) return 1.5 * w;
+    if (strategy == Strategy::field_dense) return w / 2;  // its ribbon's edge on the outline
     return w / 2 + std::max(0.0, std::round((d - w / 2) / w)) * w;
 }
 

@@ -119,7 +119,11 @@ struct Rig {
     }
 
     // Chunks uploaded, FcMain running with the service heartbeat seen, the run requested.
-    FcStatus start_run(const Job& job, double heartbeat_timeout_s = 1.0) {
+    // FcMain holds the robot after heartbeat_timeout_s without a service heartbeat: 3 s here,
+    // since a busy machine stalled this test's Modbus link for a second once (in CI: no answer
+    // within 250 ms, the link lost and back, the robot held before its first event). The test
+    // of the hold gives its own.
+    FcStatus start_run(const Job& job, double heartbeat_timeout_s = 3.0) {
         EXPECT_TRUE(io.wait_until_up(3000ms)) << io.snapshot().last_error;
         fc.upload_chunks("fibrecell/job", job.chunks);
         fc.ensure_running();
