@@ -183,6 +183,7 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         out.timings.gap_fill = clock.lap();
     }
     out.dropped_short += laid.dropped_short();
+    out.dropped_short_mm += laid.dropped_short_mm();
     paths = std::move(kept);
     if (out.spacing_cuts > 0)
         spdlog::debug("fibre.layer z={:.3f}: {} paths cut to keep W", layer.z, out.spacing_cuts);

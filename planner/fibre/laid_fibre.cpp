@@ -74,8 +74,10 @@ std::vector<LaidPiece> LaidFibre::lay(const std::vector<Eigen::Vector2d>& points
     const auto blocked = std::find_if(pts.begin(), pts.end(),
                                       [&](const Eigen::Vector2d& p) { return near(grid_, p); });
     if (blocked == pts.end() && keeps_itself(pts)) {
-        if (length_of(pts) + (pts.front() - pts.back()).norm() < min_piece_mm) {
+        const double length = length_of(pts) + (pts.front() - pts.back()).norm();
+        if (length < min_piece_mm) {
             ++dropped_short_;
+            dropped_short_mm_ += length;
             return {};
         }
         LaidPiece whole{points, true};
@@ -105,11 +107,13 @@ std::vector<LaidPiece> LaidFibre::lay_open(const std::vector<Eigen::Vector2d>& p
     std::vector<char> piece_vertex;
     const auto finish = [&] {
         if (piece.size() > 1) {
-            if (length_of(piece) >= min_piece_mm) {
+            const double length = length_of(piece);
+            if (length >= min_piece_mm) {
                 out.push_back({vertices_of(piece, piece_vertex), false});
                 commit(out.back());
             } else {
                 ++dropped_short_;
+                dropped_short_mm_ += length;
             }
         }
         piece.clear();

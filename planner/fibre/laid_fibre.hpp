@@ -35,6 +35,7 @@ class LaidFibre {
 
     // Pieces left out so far for being shorter than min_piece_mm.
     int dropped_short() const { return dropped_short_; }
+    double dropped_short_mm() const { return dropped_short_mm_; }  // their length
 
   private:
     // `pts` resampled, `vertex` flags the path's own vertices among them.
@@ -48,6 +49,7 @@ class LaidFibre {
     double keep_;  // W less the tolerance
     SegmentGrid grid_;
     int dropped_short_ = 0;
+    double dropped_short_mm_ = 0;
 };
 
 }  // namespace fibrecell::planner

@@ -30,6 +30,7 @@ struct LayerWork {
     std::vector<double> sigma;
     std::vector<std::string> warnings;
     int dropped_short = 0;
+    double dropped_short_mm = 0;
     int joins = 0;
     int rings_joined = 0;
     int rings_extended = 0;
@@ -181,6 +182,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             }
             w.layer.paths = std::move(r.paths);
             w.dropped_short = r.dropped_short;
+            w.dropped_short_mm = r.dropped_short_mm;
             w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
             std::vector<std::vector<std::array<int, 2>>> region_edges;
@@ -232,6 +234,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.layer.paths = std::move(r.paths);
             const FibreJoins joins{r.join_points, r.joined_ring_points};
             w.dropped_short = static_cast<int>(r.dropped_short);
+            w.dropped_short_mm = r.dropped_short_mm;
             w.min_spacing = r.min_spacing_mm;
             w.joins = static_cast<int>(r.joins);
             w.rings_joined = static_cast<int>(r.rings_joined);
@@ -273,6 +276,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             min_length = min_length == 0 ? len : std::min(min_length, len);
         }
         st.dropped_short += w.dropped_short;
+        st.dropped_short_mm += w.dropped_short_mm;
         if (w.budget && w.budget->target_mm > 0) {
             const BudgetFit& fit = *w.budget;
             ++st.budget.layers;

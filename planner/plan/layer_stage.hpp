@@ -23,6 +23,7 @@ struct LayerStageStats {
     int pla_layers = 0, ccf_layers = 0;
     double fibre_length_mm = 0, pla_length_mm = 0;
     int fibre_paths = 0, dropped_short = 0;
+    double dropped_short_mm = 0;   // the fibre those left out would have laid
     int fibre_boundary_paths = 0;  // of fibre_paths, boundary-conformal rings (Section 4.4)
     int fibre_joins = 0;           // curve ends joined by the connection (Section 4.4)
     int fibre_rings_joined = 0;    // rings shorter than the cutter laid on from a stress path

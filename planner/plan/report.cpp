@@ -96,7 +96,7 @@ void add_layer_stage_report(nlohmann::json& report, const LayerStageResult& laye
         {"length_m", s.fibre_length_mm / 1000.0},   {"paths", s.fibre_paths},
         {"boundary_paths", s.fibre_boundary_paths}, {"joins", s.fibre_joins},
         {"rings_joined", s.fibre_rings_joined},     {"rings_extended", s.fibre_rings_extended},
-        {"dropped_short", s.dropped_short},
+        {"dropped_short", s.dropped_short}, {"dropped_short_m", s.dropped_short_mm / 1000.0},
         {"min_spacing_mm", s.fibre_min_spacing_mm}, {"min_length_mm", s.fibre_min_length_mm}};
     report["fibre"]["mean_path_mm"] = s.fibre_paths > 0 ? s.fibre_length_mm / s.fibre_paths : 0.0;
     report["fibre"]["coverage"] = coverage_json(s.coverage);

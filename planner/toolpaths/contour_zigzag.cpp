@@ -48,6 +48,7 @@ FibreLayerPaths contour_zigzag_paths(const LayerOutline& outline, int ccf_layer,
         for (LaidPiece& piece : laid.lay(path.points, path.closed, options.cutter_distance_mm))
             result.paths.push_back({path.role, piece.closed, std::move(piece.points)});
     result.dropped_short = laid.dropped_short();
+    result.dropped_short_mm = laid.dropped_short_mm();
     return result;
 }
 

@@ -33,6 +33,7 @@ double contour_zigzag_angle_deg(int ccf_layer, const ContourZigzagOptions& optio
 struct FibreLayerPaths {
     std::vector<Toolpath> paths;  // print order
     int dropped_short = 0;        // paths or pieces shorter than the cutter distance, left out
+    double dropped_short_mm = 0;  // their length
 };
 
 // `outline` [mm] of the layer. Per island: fibre-boundary rings (closed) at W/2 + i*W inside the

@@ -114,6 +114,7 @@ TEST(LaidFibre, PiecesShorterThanTheMinimumAreDroppedCountedAndNotLaid) {
     EXPECT_EQ(laid.dropped_short(), 0);  // wholly within W of the first: nothing to drop
     EXPECT_TRUE(laid.lay(line({-5, 0.5}, {0, 0.5}), false, 5.0).empty());
     EXPECT_EQ(laid.dropped_short(), 1);  // about 4.1 mm clear of the first: shorter than 5
+    EXPECT_NEAR(laid.dropped_short_mm(), 4.134, W / 4);  // to x = -sqrt(W^2 - 0.5^2), a W/4 step
     // What was dropped was not laid: a path through it is whole.
     const auto through = laid.lay(line({-4, 0.6}, {-4, 10}), false);
     ASSERT_EQ(through.size(), 1u);

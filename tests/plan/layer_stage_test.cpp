@@ -128,6 +128,9 @@ TEST_F(LayerStageTest, CommandLineWritesThePlanDirectory) {
     EXPECT_EQ(report["layers"]["pla"], 2);
     EXPECT_EQ(report["layers"]["ccf"], 2);
     EXPECT_GT(report["fibre"]["length_m"].get<double>(), 1.0);
+    // What the cutter rule left out, counted and measured: none of it, or some of both.
+    EXPECT_EQ(report["fibre"]["dropped_short"].get<int>() > 0,
+              report["fibre"]["dropped_short_m"].get<double>() > 0);
     // Coverage per CCF layer and over both (fibre_coverage_test.cpp checks the figures).
     const auto& coverage = report["fibre"]["coverage"];
     ASSERT_EQ(coverage["layers"].size(), 2u);

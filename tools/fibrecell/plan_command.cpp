@@ -87,9 +87,9 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
         s.mean_extraction);
     std::printf(
         "fibre      %.2f m in %d paths (min spacing %.3f mm, shortest %.1f mm, %d dropped "
-        "as too short); PLA %.2f m\n",
+        "as too short: %.2f m); PLA %.2f m\n",
         s.fibre_length_mm / 1000.0, s.fibre_paths, s.fibre_min_spacing_mm, s.fibre_min_length_mm,
-        s.dropped_short, s.pla_length_mm / 1000.0);
+        s.dropped_short, s.dropped_short_mm / 1000.0, s.pla_length_mm / 1000.0);
     if (s.ccf_layers > 0) {
         // The layer with the least coverage is where a denser strategy has most to add.
         const auto least = std::min_element(
