@@ -173,6 +173,10 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         }
         if (length >= options.cutter_distance_mm && laid_length < length - 1e-6) ++out.spacing_cuts;
     }
+    // What the stripes and rings could not lay; the fill's pieces too short to lay are trials of
+    // its own, not fibre the plan lost.
+    out.dropped_short += laid.dropped_short();
+    out.dropped_short_mm += laid.dropped_short_mm();
     if (options.stripes && options.gap_fill) {
         clock.lap();
         GapFill fill = fill_gaps(layer, out.field, kept, laid,
@@ -182,8 +186,6 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
         std::move(fill.paths.begin(), fill.paths.end(), std::back_inserter(kept));
         out.timings.gap_fill = clock.lap();
     }
-    out.dropped_short += laid.dropped_short();
-    out.dropped_short_mm += laid.dropped_short_mm();
     paths = std::move(kept);
     if (out.spacing_cuts > 0)
         spdlog::debug("fibre.layer z={:.3f}: {} paths cut to keep W", layer.z, out.spacing_cuts);

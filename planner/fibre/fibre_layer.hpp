@@ -47,7 +47,7 @@ struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
 struct FibreLayer {
     std::vector<Toolpath> paths;     // roles fibre and fibre-boundary, in print order
     LayerField field;                // per triangle of the layer (for previews)
-    std::size_t dropped_short = 0;   // paths shorter than the cutter distance
+    std::size_t dropped_short = 0;   // paths shorter than the cutter distance (not the fill's trials)
     double dropped_short_mm = 0;     // their length
     std::size_t joins = 0;           // links made by the connection (Steps 3-4)
     std::size_t spacing_cuts = 0;    // paths the final laying had to cut to keep W

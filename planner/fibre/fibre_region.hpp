@@ -1,8 +1,8 @@
 #pragma once
 // Where one piece of a layer may carry fibre, measured on its true outline (paper Section 4.4,
-// Steps 1-2, with the ribbon's width): the rings d = 1.5W along the selected boundary, the
-// stress fibres kept 2.5W from it and W/2 from every other edge (the ribbon stays inside the
-// part), and the curve d = 2.5W along which cut ends are joined.
+// Steps 1-2, with the ribbon's width): the rings d = 1.5W along the selected boundary (or on
+// the outline, rings_at_edge), the stress fibres kept d + W from it and W/2 from every other edge
+// (the ribbon stays inside the part), and the curve d + W along which cut ends are joined.
 
 #include "planner/fibre/isocurves.hpp"
 #include "planner/layers/layer_mesh.hpp"
@@ -23,9 +23,9 @@ struct FibreRegionOptions {
 struct FibreRegion {
     std::vector<Polygon> part;          // the outline inset W/2: where any ribbon fits
     std::vector<Polygon> stress;        // loops, even-odd: where stress-following fibre may lie
-    std::vector<Polyline> rings;        // d = 1.5W along the selected boundary: closed or arcs
-    std::vector<Polygon> ring_loops;    // the whole d = 1.5W loops the rings lie on
-    std::vector<Polyline> link_curves;  // the edge of `stress` where it is 2.5W from it
+    std::vector<Polyline> rings;        // at d along the selected boundary: closed or arcs
+    std::vector<Polygon> ring_loops;    // the whole loops at d the rings lie on
+    std::vector<Polyline> link_curves;  // the edge of `stress` where it is d + W from it
 };
 
 // outline: the piece's loops [mm]; selected: the outline segments cut from the faces chosen for

@@ -122,10 +122,15 @@ double aligned_mm(const std::vector<Toolpath>& paths, const TriangleLocator& whe
             const Eigen::Vector2d d = pts[k + 1] - pts[k];
             const double l = d.norm();
             length += l;
-            const int f = where.locate((pts[k] + pts[k + 1]) / 2);
-            if (f < 0 || l == 0) continue;
-            const Eigen::Vector2d v = field.v_f[static_cast<std::size_t>(f)];
-            if (v.squaredNorm() > 0) along += std::abs(d.dot(v)) / v.norm();
+            if (l == 0) continue;
+            // The field where it lies, every 2 mm or so: a long zigzag line crosses a turning field.
+            const int n = std::max(1, static_cast<int>(std::ceil(l / 2.0)));
+            for (int j = 0; j < n; ++j) {
+                const int f = where.locate(pts[k] + d * ((j + 0.5) / n));
+                if (f < 0) continue;
+                const Eigen::Vector2d v = field.v_f[static_cast<std::size_t>(f)];
+                if (v.squaredNorm() > 0) along += std::abs(d.dot(v)) / v.norm() / n;
+            }
         }
         if (length >= cutter_distance_mm) total += along;
     }
@@ -185,10 +190,15 @@ GapFill fill_gaps(const LayerMesh& layer, const LayerField& field,
         const auto& t = layer.triangles[f];
         centroid[f] = (layer.vertices[t[0]] + layer.vertices[t[1]] + layer.vertices[t[2]]) / 3;
     }
-    // Lines W apart in an island add up to about its area over W: one much smaller than a
-    // cutter-long line's ribbon holds nothing that can be laid.
+    // Lines W apart in an island add up to about its area over W, but a sliver narrower than W
+    // still holds one along its edge: an island holds nothing that can be laid when both its
+    // area is much smaller than a cutter-long ribbon and its edge shorter than two cutters.
     const auto too_small = [&](const std::vector<Polygon>& island) {
-        return region_area(island) < 0.5 * w * cutter;
+        if (region_area(island) >= 0.5 * w * cutter) return false;
+        double edge = 0;
+        const Polygon& loop = island.front();
+        for (std::size_t i = 0; i < loop.size(); ++i) edge += (loop[(i + 1) % loop.size()] - loop[i]).norm();
+        return edge < 2 * cutter;
     };
     // Zigzag lines along the island's mean stress and along its length, and (first pass) rings:
     // whichever lays the most length along the stress.

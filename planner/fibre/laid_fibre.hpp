@@ -27,7 +27,8 @@ class LaidFibre {
     // Lays `points` (closed: a loop) after what is already laid and returns the pieces kept, in
     // path order. Resampled every W/4 (for the check only), a point is kept when it lies at least W
     // from every laid segment: those of earlier paths, of earlier pieces of this one, and of this
-    // piece more than 4W behind it along the path. (Between two kept points W/4 apart, a laid
+    // piece more than 4W behind it along the path (measured from segments 3.75W back, so that a
+    // point between two samples is covered too). (Between two kept points W/4 apart, a laid
     // corner can come up to 0.8% nearer than W.) A loop that needs no cut stays closed. Pieces
     // shorter than min_piece_mm are neither returned nor laid.
     std::vector<LaidPiece> lay(const std::vector<Eigen::Vector2d>& points, bool closed,

@@ -172,13 +172,16 @@ async function main() {
   // What the watcher's page shows while the job prints, sampled in the page every 20 ms (the
   // operator's page is busy pausing, visiting the cell page and resuming meanwhile): the progress
   // bar's values, whether the robot's marker stood on the layer, and where the action buttons
-  // stood (the header must not grow as the print begins and move them under the operator's finger).
+  // stood while the job was on the cell (the header must not grow as the print begins and move
+  // them under the operator's finger; at the end a reason may appear above them, which is fine).
   await watcher.evaluate(() => {
     window.seen = { progress: [], robot: false, buttonsAt: [] };
+    const onCell = ["planned", "starting", "printing", "pausing", "paused"];
     setInterval(() => {
       const p = document.querySelector("#print-progress progress");
       if (p && p.value !== window.seen.progress.at(-1)) window.seen.progress.push(p.value);
       if (document.querySelector("#layer-view svg .robot")) window.seen.robot = true;
+      if (!onCell.includes(document.querySelector("h1 .state")?.dataset.state)) return;
       const top = document.querySelector(".actions").getBoundingClientRect().top + window.scrollY;
       if (!window.seen.buttonsAt.includes(top)) window.seen.buttonsAt.push(top);
     }, 20);
@@ -191,7 +194,8 @@ async function main() {
   // below accept the end too, so that the test fails at once, not after its timeouts.
   const ended = ["completed", "completed_with_warnings", "failed", "aborted"];
   await page.click('button[data-action="start"]');
-  await waitForState(page, "h1 .state", ["printing", ...ended]);
+  const printing = await waitForState(page, "h1 .state", ["printing", ...ended]);
+  if (printing !== "printing") fail(`the print ended ${printing} before it could be paused`);
   await page.click('button[data-action="pause"]');
   const held = await waitForState(page, "h1 .state", ["paused", ...ended]);
   if (held !== "paused") fail(`the print ended ${held} before the pause took hold`);
