@@ -142,3 +142,52 @@ TEST(GapFill, AGapTooSmallForACutterLongPathGetsNothing) {
     EXPECT_TRUE(fill.paths.empty());
     EXPECT_EQ(fill.gaps, 0u);
 }
+
+TEST(GapFill, AGapBetweenTwoRingsIsFilledRoundWithTheStressNotAcrossIt) {
+    // Fibre laid round a centre at r = 8 and r = 22 mm, the stress running round too: the annulus
+    // between them is best filled with rings W apart; straight lines across it would lie along
+    // the stress on average |cos| = 2/pi of their length.
+    const LayerMesh m = grid_layer(60, 60, 40, 40);
+    const Eigen::Vector2d c(30, 30);
+    LayerField field;
+    for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+        const Eigen::Vector2d r = fibrecell::planner::layer_test::centre(m, static_cast<int>(f)) - c;
+        field.v_f.emplace_back(-r.y(), r.x());
+        field.sigma_f.push_back(1.0);
+    }
+    field.u_f = field.v_f;
+    field.defined.assign(m.triangles.size(), 1);
+    const auto circle = [&](double radius) {
+        Toolpath t{PathRole::fibre, true, {}};
+        for (int k = 0; k < 400; ++k) {
+            const double a = 2 * std::numbers::pi * k / 400;
+            t.points.push_back(c + radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+        }
+        return t;
+    };
+    const std::vector<Toolpath> laid_paths = {circle(8), circle(22)};
+    LaidFibre laid(W);
+    for (const Toolpath& p : laid_paths) ASSERT_EQ(laid.lay(p.points, p.closed).size(), 1u);
+    const GapFill fill = fill_gaps(m, field, laid_paths, laid, {.spacing_mm = W, .cutter_distance_mm = cutter});
+    EXPECT_GE(fill.ringed_gaps, 1u);
+    double within = 0, along = 0;
+    for (const Toolpath& p : fill.paths) {
+        std::vector<Eigen::Vector2d> pts = p.points;
+        if (p.closed) pts.push_back(pts.front());
+        for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+            const Eigen::Vector2d mid = (pts[k] + pts[k + 1]) / 2 - c;
+            if (mid.norm() < 9 || mid.norm() > 21) continue;  // the annulus only
+            const Eigen::Vector2d d = pts[k + 1] - pts[k];
+            within += d.norm();
+            along += std::abs(d.dot(Eigen::Vector2d(-mid.y(), mid.x()).normalized()));
+        }
+    }
+    // The annulus 9..21 mm holds about (21^2 - 9^2) pi / W of fibre: most of it laid, round.
+    EXPECT_GT(within, 0.8 * (21 * 21 - 9 * 9) * std::numbers::pi / W);
+    EXPECT_GT(along / within, 0.95);
+    std::vector<Toolpath> all = laid_paths;
+    all.insert(all.end(), fill.paths.begin(), fill.paths.end());
+    const auto [between, within_path] = closest_approach(resampled(all));
+    EXPECT_GE(between, 0.995 * W);
+    EXPECT_GE(within_path, 0.995 * W);
+}
