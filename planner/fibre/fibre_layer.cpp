@@ -178,13 +178,10 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
     out.dropped_short += laid.dropped_short();
     out.dropped_short_mm += laid.dropped_short_mm();
     if (options.stripes && options.gap_fill) {
-        clock.lap();
         GapFill fill = fill_gaps(layer, out.field, kept, laid,
                                  {.spacing_mm = options.spacing_mm,
                                   .cutter_distance_mm = options.cutter_distance_mm});
-        out.gap_fill_paths = fill.paths.size();
         std::move(fill.paths.begin(), fill.paths.end(), std::back_inserter(kept));
-        out.timings.gap_fill = clock.lap();
     }
     paths = std::move(kept);
     if (out.spacing_cuts > 0)

@@ -41,7 +41,6 @@ struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
     double scalar_field = 0;
     double extraction = 0;
     double connection = 0;
-    double gap_fill = 0;  // field-dense: the bare region's zigzag fill
 };
 
 struct FibreLayer {
@@ -54,7 +53,6 @@ struct FibreLayer {
     std::size_t rings_joined = 0;    // rings shorter than the cutter laid as part of a stress path
     std::size_t rings_extended = 0;  // arcs too short to cut run on along their loop instead
     std::size_t singular_triangles = 0;  // field-dense: where the stripes branch (none cross)
-    std::size_t gap_fill_paths = 0;      // field-dense: zigzag paths laid where stripes left gaps
     // Where they are, for the report per boundary: each link's meeting point (the middle of the
     // two ends it joins) and the first point of each joined ring.
     std::vector<Eigen::Vector2d> join_points, joined_ring_points;

@@ -3,6 +3,7 @@
 #include "planner/fibre/segment_grid.hpp"
 #include "planner/layers/outline.hpp"
 #include "planner/layers/triangle_locator.hpp"
+#include "planner/toolpaths/path_order.hpp"
 #include "planner/toolpaths/polygon_offset.hpp"
 #include "planner/toolpaths/zigzag_fill.hpp"
 
@@ -115,13 +116,12 @@ double aligned_mm(const std::vector<Toolpath>& paths, const TriangleLocator& whe
                   const LayerField& field, double cutter_distance_mm) {
     double total = 0;
     for (const Toolpath& p : paths) {
+        if (path_length(p) < cutter_distance_mm) continue;
         std::vector<Eigen::Vector2d> pts = p.points;
         if (p.closed && !pts.empty()) pts.push_back(pts.front());
-        double length = 0, along = 0;
         for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
             const Eigen::Vector2d d = pts[k + 1] - pts[k];
             const double l = d.norm();
-            length += l;
             if (l == 0) continue;
             // The field where it lies, every 2 mm or so: a long zigzag line crosses a turning field.
             const int n = std::max(1, static_cast<int>(std::ceil(l / 2.0)));
@@ -129,10 +129,9 @@ double aligned_mm(const std::vector<Toolpath>& paths, const TriangleLocator& whe
                 const int f = where.locate(pts[k] + d * ((j + 0.5) / n));
                 if (f < 0) continue;
                 const Eigen::Vector2d v = field.v_f[static_cast<std::size_t>(f)];
-                if (v.squaredNorm() > 0) along += std::abs(d.dot(v)) / v.norm() / n;
+                if (v.squaredNorm() > 0) total += std::abs(d.dot(v)) / v.norm() / n;
             }
         }
-        if (length >= cutter_distance_mm) total += along;
     }
     return total;
 }
@@ -154,15 +153,13 @@ std::vector<Toolpath> island_rings(const std::vector<Polygon>& island, double w)
 std::vector<Polygon> bare_of(const std::vector<Polygon>& part, const std::vector<Toolpath>& paths,
                              double w) {
     std::vector<std::vector<Eigen::Vector2d>> lines;
-    std::vector<bool> closed;
     for (const Toolpath& p : paths) {
         std::vector<Eigen::Vector2d> pts = p.points;
         if (p.closed && !pts.empty()) pts.push_back(pts.front());  // thinned as a line, whole
         lines.push_back(thinned(pts, thin_mm));
-        closed.push_back(false);
     }
     if (lines.empty()) return part;
-    return region_difference(part, line_band(lines, closed, w + band_margin_mm, {.arc_tolerance_mm = arc_mm}));
+    return region_difference(part, line_band(lines, w + band_margin_mm, {.arc_tolerance_mm = arc_mm}));
 }
 
 void lay_into(LaidFibre& laid, const std::vector<Eigen::Vector2d>& points, bool closed,
@@ -195,10 +192,7 @@ GapFill fill_gaps(const LayerMesh& layer, const LayerField& field,
     // area is much smaller than a cutter-long ribbon and its edge shorter than two cutters.
     const auto too_small = [&](const std::vector<Polygon>& island) {
         if (region_area(island) >= 0.5 * w * cutter) return false;
-        double edge = 0;
-        const Polygon& loop = island.front();
-        for (std::size_t i = 0; i < loop.size(); ++i) edge += (loop[(i + 1) % loop.size()] - loop[i]).norm();
-        return edge < 2 * cutter;
+        return path_length({PathRole::fibre, true, island.front()}) < 2 * cutter;
     };
     // Zigzag lines along the island's mean stress and along its length, and (first pass) rings:
     // whichever lays the most length along the stress.

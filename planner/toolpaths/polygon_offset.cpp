@@ -172,23 +172,18 @@ std::vector<Polygon> segment_band(const std::vector<Segment2>& segments, double 
 }
 
 std::vector<Polygon> line_band(const std::vector<std::vector<Eigen::Vector2d>>& lines,
-                               const std::vector<bool>& closed, double radius_mm,
-                               const OffsetOptions& options) {
+                               double radius_mm, const OffsetOptions& options) {
     if (!(radius_mm > 0) || !std::isfinite(radius_mm))
         throw std::invalid_argument("band radius_mm must be positive");
     if (!(options.arc_tolerance_mm > 0))
         throw std::invalid_argument("offset arc_tolerance_mm must be positive");
-    if (closed.size() != lines.size())
-        throw std::invalid_argument("line_band: one closed flag a line");
     ClipperLib::ClipperOffset offset(2.0, options.arc_tolerance_mm * units_per_mm);
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        if (lines[i].empty()) continue;
+    for (const std::vector<Eigen::Vector2d>& line : lines) {
+        if (line.empty()) continue;
         ClipperLib::Path path;
-        path.reserve(lines[i].size());
-        for (const Eigen::Vector2d& p : lines[i]) path.push_back(to_units(p));
-        offset.AddPath(path, ClipperLib::jtRound,
-                       closed[i] && lines[i].size() > 2 ? ClipperLib::etClosedLine
-                                                        : ClipperLib::etOpenRound);
+        path.reserve(line.size());
+        for (const Eigen::Vector2d& p : line) path.push_back(to_units(p));
+        offset.AddPath(path, ClipperLib::jtRound, ClipperLib::etOpenRound);
     }
     ClipperLib::Paths result;
     offset.Execute(result, radius_mm * units_per_mm);

@@ -37,14 +37,12 @@ using Segment2 = std::array<Eigen::Vector2d, 2>;
 std::vector<Polygon> segment_band(const std::vector<Segment2>& segments, double radius_mm,
                                   const OffsetOptions& options = {});
 
-// The region within radius_mm of any of `lines` [mm] (open polylines with round ends, or closed
-// loops when `closed` says so, one flag a line), as loops read even-odd; empty for no lines. The
-// same as segment_band over their segments, offset a line at a time (far fewer joins to union).
-// Throws std::invalid_argument on a non-finite coordinate, a non-positive radius or flags that do
-// not match the lines.
+// The region within radius_mm of any of `lines` [mm] (polylines with round ends; a loop repeats
+// its first point at its end), as loops read even-odd; empty for no lines. The same as
+// segment_band over their segments, offset a line at a time (far fewer joins to union). Throws
+// std::invalid_argument on a non-finite coordinate or a non-positive radius.
 std::vector<Polygon> line_band(const std::vector<std::vector<Eigen::Vector2d>>& lines,
-                               const std::vector<bool>& closed, double radius_mm,
-                               const OffsetOptions& options = {});
+                               double radius_mm, const OffsetOptions& options = {});
 
 // Area [mm^2] of a region read even-odd (holes subtract, overlaps do not count twice).
 double region_area(const std::vector<Polygon>& loops);
