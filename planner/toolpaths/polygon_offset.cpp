@@ -209,13 +209,18 @@ double region_area(const std::vector<Polygon>& loops) {
 }
 
 bool inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& p) {
-    const ClipperLib::IntPoint at = to_units(p);
+    // Even-odd by crossings of a ray to +x (each edge counts for y in [lo, hi)): no copy of the
+    // region, so a caller may test many points against a large one.
     bool inside = false;
     for (const Polygon& loop : region) {
-        ClipperLib::Path path;
-        path.reserve(loop.size());
-        for (const Eigen::Vector2d& q : loop) path.push_back(to_units(q));
-        if (ClipperLib::PointInPolygon(at, path) == 1) inside = !inside;
+        const std::size_t n = loop.size();
+        for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+            const Eigen::Vector2d& a = loop[i];
+            const Eigen::Vector2d& b = loop[j];
+            if ((a.y() > p.y()) == (b.y() > p.y())) continue;
+            const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+            if (p.x() < x) inside = !inside;
+        }
     }
     return inside;
 }
