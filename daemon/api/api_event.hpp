@@ -1,7 +1,7 @@
 #pragma once
 // Events the service publishes to subscribed clients as JSON-RPC notifications (no id).
-// Topics: a job id for that job's events, "cell" for cell status, "log" for log lines; a client
-// subscribed to "*" gets every topic.
+// Topics: a job id for that job's events, "cell" for cell status, "log" for log lines, "queue"
+// for the print queue and the bed; a client subscribed to "*" gets every topic.
 
 #include <nlohmann/json.hpp>
 
@@ -14,12 +14,14 @@ inline constexpr const char* job_state = "notify.job_state";        // in order,
 inline constexpr const char* job_progress = "notify.job_progress";  // latest only, rate-limited
 inline constexpr const char* cell_status = "notify.cell_status";    // latest only, rate-limited
 inline constexpr const char* log = "notify.log";                    // in order, immediately
+inline constexpr const char* queue = "notify.queue";                // in order, immediately
 }  // namespace notify
 
 namespace topic {
 inline constexpr const char* all = "*";
 inline constexpr const char* cell = "cell";
 inline constexpr const char* log = "log";
+inline constexpr const char* queue = "queue";
 }  // namespace topic
 
 enum class Delivery {
@@ -32,7 +34,7 @@ enum class Delivery {
 };
 
 struct ApiEvent {
-    std::string topic;   // job id, "cell", "log"
+    std::string topic;   // job id, "cell", "log", "queue"
     std::string method;  // notify.*
     nlohmann::json params = nlohmann::json::object();
     Delivery delivery = Delivery::every;

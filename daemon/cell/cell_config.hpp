@@ -29,9 +29,9 @@ struct CellConfig {
     PartLimits part_limits;                         // the largest part it takes (service.md)
 };
 
-// The sections only the service reads (api:, jobs:, print:); other readers of a cell YAML
+// The sections only the service reads (api:, jobs:, print:, queue:); other readers of a cell YAML
 // (`fibrecell plan --cell`) pass over them.
-inline constexpr const char* service_sections[] = {"api", "jobs", "print"};
+inline constexpr const char* service_sections[] = {"api", "jobs", "print", "queue"};
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key. `service`
 // reads the service's own sections from the root (fibrecelld); without it they are skipped.

@@ -84,6 +84,8 @@ void JobsComponent::add_job_view(JobView view) { views_.push_back(std::move(view
 
 void JobsComponent::on_planned(Planned planned) { planned_.push_back(std::move(planned)); }
 
+void JobsComponent::on_change(Changed changed) { changed_.push_back(std::move(changed)); }
+
 void JobsComponent::register_endpoints(component::Endpoints& endpoints) {
     endpoints.method("job.submit", [this](const json& params, const CallContext& ctx) {
         const JobInput input = submitted_job(params, ctx);
@@ -161,7 +163,10 @@ void JobsComponent::start() {
     spdlog::info("jobs.loaded {} jobs ({} to plan, {} interrupted, {} failed)", loaded.loaded.size(),
                  loaded.to_plan.size(), loaded.interrupted.size(), loaded.failed.size());
     to_plan_ = loaded.to_plan;
-    store_->on_change([this](const JobRecord& r) { publish_job(r); });
+    store_->on_change([this](const JobRecord& r) {
+        publish_job(r);
+        for (const Changed& f : changed_) f(r);
+    });
 
     planning_pool_ = std::make_unique<ThreadPool>(
         ThreadPoolOptions{.threads = config_.planner_threads, .nice = config_.planner_nice});

@@ -8,6 +8,8 @@
 //   add_job_view  what a job's view (job.get, job.list, notify.job_state) says besides the store's
 //                 record and the plan's figures; the printer adds the live print progress.
 //   on_planned    a job's planning ended; the printer starts one submitted with `start`.
+//   on_change     a job's state changed (the store's every change, after notify.job_state went
+//                 out); the print queue follows its jobs and the cell's bed with it.
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/component/component.hpp"
@@ -30,12 +32,16 @@ class JobsComponent : public component::Component {
   public:
     using JobView = std::function<void(const JobRecord& record, nlohmann::json& view)>;
     using Planned = std::function<void(const JobRecord& record)>;
+    using Changed = std::function<void(const JobRecord& record)>;
 
     JobsComponent(const CellConfig& cell, const JobsConfig& config);
     ~JobsComponent() override;
 
     void add_job_view(JobView view);   // before start()
     void on_planned(Planned planned);  // before start(); called on a planning thread
+    // Before start(); called on the thread that changed the job (the API's, a planning worker,
+    // the print runner), never with the store's lock held.
+    void on_change(Changed changed);
 
     void register_endpoints(component::Endpoints& endpoints) override;
     void start() override;  // loads the jobs (interrupted prints come back `interrupted`)
@@ -58,6 +64,7 @@ class JobsComponent : public component::Component {
     component::Endpoints endpoints_;
     std::vector<JobView> views_;
     std::vector<Planned> planned_;
+    std::vector<Changed> changed_;
     std::vector<std::int64_t> to_plan_;  // found unplanned by start()
     std::unique_ptr<JobStore> store_;
     std::unique_ptr<ThreadPool> planning_pool_;  // before planner_, which uses it

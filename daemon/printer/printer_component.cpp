@@ -20,6 +20,11 @@ PrinterComponent::PrinterComponent(jobs::JobsComponent& jobs, devices::CellCompo
                                    const CellConfig& config, PrintRunnerOptions options)
     : jobs_(jobs), cell_(cell), config_(config), options_(options) {
     jobs_.add_job_view([this](const JobRecord& r, json& view) {
+        if (r.state == JobState::planned) {
+            std::lock_guard lock(refused_mu_);
+            if (const auto it = start_refused_.find(r.id); it != start_refused_.end())
+                view["start_refused"] = it->second;
+        }
         if (!runner_ || runner_->current_job() != r.id) return;
         const json s = runner_->print_status();
         if (s.contains("progress")) {
@@ -54,12 +59,7 @@ std::optional<std::string> PrinterComponent::held_at_gate(const JobRecord& r) co
 
 void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
     endpoints.method("job.start", [this](const json& params, const CallContext& ctx) {
-        const std::int64_t id = jobs::job_id_param(params, ctx);
-        if (const auto reason = held_at_gate(as_api([&] { return jobs_.store().get(id); })))
-            throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
-        const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::start); });
-        runner_->start(id, nullptr);
-        return jobs_.job_json(r);
+        return jobs_.job_json(start_print(jobs::job_id_param(params, ctx)));
     });
 
     endpoints.control_method("job.pause", [this](const json& params, const CallContext& ctx) {
@@ -121,13 +121,25 @@ void PrinterComponent::stop() {
     if (runner_) runner_->stop();
 }
 
+JobRecord PrinterComponent::start_print(std::int64_t id) {
+    if (const auto reason = held_at_gate(as_api([&] { return jobs_.store().get(id); })))
+        throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
+    const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::start); });
+    runner_->start(id, nullptr);
+    std::lock_guard lock(refused_mu_);
+    start_refused_.erase(id);
+    return r;
+}
+
 void PrinterComponent::start_when_planned(const JobRecord& r) {
     if (r.state != JobState::planned || !r.start_when_planned) return;
     try {
-        if (const auto reason = held_at_gate(r)) throw std::runtime_error(*reason);
-        jobs_.store().request(r.id, JobAction::start);
-        runner_->start(r.id, nullptr);
+        start_print(r.id);
     } catch (const std::exception& e) {
+        {
+            std::lock_guard lock(refused_mu_);
+            start_refused_[r.id] = e.what();
+        }
         spdlog::warn("job {} planned; not started: {}", r.id, e.what());
     }
 }

@@ -7,8 +7,11 @@
 //
 // Hook for the components above it:
 //   add_start_gate  a check that must pass before any print starts (job.start, job.resume of an
-//                   interrupted job, a job submitted with `start` once planned): a gate that
-//                   answers a reason refuses the start with it, and nothing moves.
+//                   interrupted job, a job submitted with `start` once planned, the queue's next
+//                   job): a gate that answers a reason refuses the start with it, and nothing
+//                   moves.
+//   start_print     starts a planned job as job.start does (the gates first), for a component
+//                   that starts jobs of its own (the print queue).
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/component/component.hpp"
@@ -20,6 +23,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +43,10 @@ class PrinterComponent : public component::Component {
     ~PrinterComponent() override;
 
     void add_start_gate(StartGate gate);  // before start()
+
+    // job.start: the gates, the store's start, then the runner. Throws api::ApiError (conflict
+    // with the gate's or the store's reason, not found).
+    jobs::JobRecord start_print(std::int64_t id);
 
     void register_endpoints(component::Endpoints& endpoints) override;
     void start() override;
@@ -59,6 +68,10 @@ class PrinterComponent : public component::Component {
     PrintRunnerOptions options_;
     component::Endpoints endpoints_;
     std::vector<StartGate> gates_;
+    // Jobs submitted with `start` whose start was refused once planned, and why: their view says
+    // so (`start_refused`), so that a watching client need not wait for a start that will not come.
+    mutable std::mutex refused_mu_;
+    std::map<std::int64_t, std::string> start_refused_;
     std::unique_ptr<PrintRunner> runner_;
 };
 

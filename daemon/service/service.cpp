@@ -6,6 +6,7 @@
 #include "daemon/log/log_component.hpp"
 #include "daemon/printer/printer_component.hpp"
 #include "daemon/printer/printer_config.hpp"
+#include "daemon/queue/queue_component.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -23,6 +24,7 @@ ServiceConfig load_service_config(const std::string& path) {
         c.api = api::load_api_config(root.section("api"));
         c.jobs = jobs::load_jobs_config(root.section("jobs"));
         c.print = printer::load_print_options(root.section("print"));
+        c.queue = queue::load_queue_config(root.section("queue"));
     });
     return c;
 }
@@ -52,6 +54,7 @@ Service::Service(boost::asio::io_context& io, ServiceConfig config)
                                       .realtime_priority = config_.print.realtime_priority});
     auto& jobs = add<jobs::JobsComponent>("jobs", config_.cell, config_.jobs);
     printer_ = &add<printer::PrinterComponent>("printer", jobs, cell, config_.cell, config_.print);
+    add<queue::QueueComponent>("queue", jobs, *printer_, cell, config_.cell, config_.queue);
     add<logs::LogComponent>("log");
 }
 

@@ -14,6 +14,7 @@
 #include "daemon/http/http_server.hpp"
 #include "daemon/jobs/jobs_config.hpp"
 #include "daemon/printer/print_runner.hpp"
+#include "daemon/queue/queue_config.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -34,6 +35,7 @@ struct ServiceConfig {
     api::ApiConfig api;
     jobs::JobsConfig jobs;
     printer::PrintRunnerOptions print;
+    queue::QueueConfig queue;
 };
 
 // The cell YAML with the service's sections (api:, jobs:, print:); throws config::ConfigError.

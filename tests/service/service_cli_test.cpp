@@ -77,8 +77,21 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
     EXPECT_EQ(finished.status, 1);
     EXPECT_THAT(finished.out, HasSubstr("fibrecell: job 1 is completed"));
 
-    // The cell prints the next job as well (the previous run's outputs are reset for it).
-    const CliRun second = fibrecell_cli("submit " + (dir_ / "jobs/bar.job.yaml").string() + " --start --watch" + sock);
+    // Job 1's part is on the bed (docs/queue.md): the next job plans, is not started, and the
+    // watch says why instead of waiting for a start that will not come.
+    EXPECT_THAT(fibrecell_cli("status" + sock).out, HasSubstr("bed:    not clear: job 1 (bar) " + outcome));
+    const CliRun held = fibrecell_cli("submit " + (dir_ / "jobs/bar.job.yaml").string() + " --start --watch" + sock);
+    EXPECT_EQ(held.status, 1) << held.out;
+    EXPECT_THAT(held.out, HasSubstr("job 2 planned; not started: job 2 cannot start: the cell is not "
+                                    "clear: job 1's part (" + outcome + " at "));
+
+    // The operator takes the part off and says so; the cell prints the next job as well (the
+    // previous run's outputs are reset for it).
+    const CliRun cleared = fibrecell_cli("clear" + sock);
+    EXPECT_EQ(cleared.status, 0) << cleared.out;
+    EXPECT_THAT(cleared.out, HasSubstr("cell cleared\nbed: clear\n"));
+    EXPECT_EQ(fibrecell_cli("start 2" + sock).status, 0);
+    const CliRun second = fibrecell_cli("watch 2" + sock);
     const bool second_warned = second.out.find("completed_with_warnings") != std::string::npos;
     EXPECT_EQ(second.status, second_warned ? 1 : 0) << second.out;
     EXPECT_THAT(second.out, HasSubstr(second_warned ? "job 2 (bar) completed_with_warnings: "

@@ -38,8 +38,10 @@ class HeaterTest : public ServiceTest {
         return t && t->first > 0 && t->second > 0;
     }
 
-    // Submitted and started; returns once it has confirmed `event`.
+    // Submitted and started (the last print's part taken off first: docs/queue.md); returns
+    // once it has confirmed `event`.
     std::int64_t print_until(api::ApiClient& c, int event) {
+        c.call("cell.clear");
         const std::int64_t id = submit_bar(c, true);
         EXPECT_EQ(wait_for_state(c, id, "printing", 120s).value("state", ""), "printing") << service_->log();
         EXPECT_TRUE(eventually([&] {

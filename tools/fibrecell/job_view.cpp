@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 #include <vector>
 
@@ -169,6 +170,13 @@ std::string cell_details(const json& cell) {
         out << "\n";
     }
     if (has(cell, "job")) out << "  job:    " << cell["job"].get<int>() << "\n";
+    if (has(cell, "bed")) {
+        out << "  bed:    " << bed_text(cell["bed"]);
+        if (has(cell, "queue"))
+            out << "; " << static_cast<long>(number(cell["queue"], "jobs")) << " queued"
+                << (cell["queue"].value("paused", false) ? " (paused)" : "");
+        out << "\n";
+    }
     if (has(cell, "sync")) {
         const json& s = cell["sync"];
         if (has(s, "latency_ms"))
@@ -176,6 +184,46 @@ std::string cell_details(const json& cell) {
         if (has(s, "cut_error_mm"))
             out << "          cut position error " << percentile_pair(s["cut_error_mm"], "mm", 3)
                 << "\n";
+    }
+    return out.str();
+}
+
+std::string bed_text(const json& bed) {
+    if (bed.value("clear", true)) return "clear";
+    std::string t = "not clear: ";
+    if (bed.value("job", 0) > 0) {
+        t += "job " + std::to_string(bed["job"].get<long>());
+        if (has(bed, "name")) t += " (" + text(bed, "name") + ")";
+        t += " " + text(bed, "outcome");
+    } else {
+        t += "not known";
+    }
+    if (has(bed, "since")) t += " at " + text(bed, "since");
+    return t;
+}
+
+std::string queue_table(const json& queue) {
+    std::ostringstream out;
+    out << "bed: " << bed_text(queue.value("bed", json::object()));
+    if (!queue.value("bed", json::object()).value("clear", true))
+        out << "  (`fibrecell clear` once the part is off)";
+    out << "\nqueue: " << (text(queue, "auto_start") == "after_clear" ? "starts after a clear" : "started by hand (`fibrecell queue next`)");
+    if (queue.value("paused", false))
+        out << ", paused" << (has(queue, "paused_reason") ? ": " + text(queue, "paused_reason") : "")
+            << " (`fibrecell queue resume`)";
+    out << "\n";
+    const json jobs = queue.value("jobs", json::array());
+    if (jobs.empty()) {
+        out << "  (empty)\n";
+        return out.str();
+    }
+    out << "  pos  job  name                  state\n";
+    for (const json& j : jobs) {
+        std::string name = text(j, "name");
+        if (name.size() > 20) name = name.substr(0, 19) + "~";
+        out << "  " << std::setw(3) << static_cast<long>(number(j, "position")) << "  " << std::setw(3)
+            << static_cast<long>(number(j, "id")) << "  " << std::left << std::setw(20) << name
+            << std::right << "  " << text(j, "state") << "\n";
     }
     return out.str();
 }

@@ -20,6 +20,10 @@ std::string jobs_table(const nlohmann::json& jobs);
 std::string job_details(const nlohmann::json& job);
 // Several lines for `fibrecell status` (devices, temperatures, current job, sync figures).
 std::string cell_details(const nlohmann::json& cell);
+// The bed in one phrase: "clear", or "not clear: job 4 (bar) completed at ...".
+std::string bed_text(const nlohmann::json& bed);
+// `fibrecell queue`: the bed, the start mode and pause, and one row per queued job.
+std::string queue_table(const nlohmann::json& queue);
 // The live line of `watch`: planning stage and its bar, or layer i/N, the print bar, the
 // temperatures, elapsed/ETA and the sync error; empty when there is nothing to show.
 std::string live_line(const nlohmann::json& job, const nlohmann::json& cell);

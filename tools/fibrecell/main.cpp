@@ -3,6 +3,7 @@
 #include "config/logging.hpp"
 #include "tools/fibrecell/compare_command.hpp"
 #include "tools/fibrecell/plan_command.hpp"
+#include "tools/fibrecell/queue_commands.hpp"
 #include "tools/fibrecell/service_commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     fibrecell::tools::add_plan_command(app, exit_code);
     fibrecell::tools::add_compare_command(app, exit_code);
     fibrecell::tools::add_service_commands(app, exit_code);
+    fibrecell::tools::add_queue_commands(app, exit_code);
     app.parse_complete_callback(
         [&] { fibrecell::config::setup_logging(verbose ? "info" : "warn"); });
     CLI11_PARSE(app, argc, argv);

@@ -5,6 +5,7 @@
 #include "daemon/api/api_client.hpp"
 #include "planner/job/job_spec.hpp"
 #include "tools/fibrecell/job_view.hpp"
+#include "tools/fibrecell/service_connection.hpp"
 
 #include <unistd.h>
 
@@ -23,60 +24,12 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-constexpr const char* default_socket = "/run/fibrecelld/api.sock";
-
-struct Connection {
-    std::string socket, host, token;
-    std::uint16_t port = 7420;
-    bool json_output = false;
-
-    api::ApiClient connect() const {
-        api::ApiEndpoint e;
-        e.socket_path = socket;
-        e.host = host;
-        e.port = port;
-        e.token = token;
-        return api::ApiClient::connect(e);
-    }
-};
-
-void add_connection_options(CLI::App& cmd, Connection& c) {
-    if (const char* s = std::getenv("FIBRECELL_SOCKET")) c.socket = s;
-    if (c.socket.empty()) c.socket = default_socket;
-    if (const char* t = std::getenv("FIBRECELL_TOKEN")) c.token = t;
-    cmd.add_option("--socket", c.socket, "the service's Unix socket ($FIBRECELL_SOCKET)");
-    cmd.add_option("--host", c.host, "connect over TCP to this host instead");
-    cmd.add_option("--port", c.port, "TCP port (with --host)");
-    cmd.add_option("--token", c.token, "TCP token ($FIBRECELL_TOKEN)");
-    cmd.add_flag("--json", c.json_output, "machine-readable output");
-}
-
 std::string read_text(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     if (!in) throw std::runtime_error("cannot read " + p.string());
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-// A verb's body; errors become one line on stderr and exit code 1.
-void guarded(int& exit_code, const std::function<int()>& body) {
-    try {
-        exit_code = body();
-    } catch (const api::ApiCallError& e) {
-        std::cerr << "fibrecell: " << e.what() << "\n";
-        exit_code = 1;
-    } catch (const std::exception& e) {
-        std::cerr << "fibrecell: " << e.what() << "\n";
-        exit_code = 1;
-    }
-}
-
-void print(const Connection& c, const json& answer, const std::string& human) {
-    if (c.json_output)
-        std::cout << answer.dump() << "\n";
-    else
-        std::cout << human;
 }
 
 // The job YAML with every file it names (relative to its folder), for job.submit.
@@ -132,9 +85,12 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id, bool unt
     // A start that was refused sends the job back to planned (or interrupted) with the reason:
     // after `starting`, that is where this watch ends too.
     bool started = state == "starting";
+    // A job submitted with `start` whose start the cell refused once it was planned (a bed not
+    // yet cleared): its view says why, and nothing more will happen by itself.
+    const auto not_started = [&] { return state == "planned" && job.contains("start_refused"); };
     const auto ended = [&] {
         return is_final_state(state) || (started && (state == "planned" || state == "interrupted")) ||
-               (until_paused && state == "paused");
+               (until_paused && state == "paused") || not_started();
     };
     while (!ended()) {
         const auto n = client.next_notification(500ms);
@@ -198,7 +154,11 @@ int watch(const Connection& c, api::ApiClient& client, std::int64_t id, bool unt
         std::cout << job.dump() << "\n";
     } else {
         if (tty) std::cout << "\r\x1b[K";
-        std::cout << outcome_line(job) << "\n";
+        if (job.value("state", "") == "planned" && job.contains("start_refused"))
+            std::cout << "job " << id << " planned; not started: "
+                      << config::printable(job.value("start_refused", "")) << "\n";
+        else
+            std::cout << outcome_line(job) << "\n";
         print_folders(job);
     }
     return job.value("state", "") == "completed" ? 0 : 1;

@@ -1,12 +1,13 @@
-// The Jobs page: the queue and history with states, submitting a job (its YAML and the files it
-// names, as `fibrecell submit` sends them), and the actions its state allows. The service decides:
-// a refused action shows the service's own reason.
+// The Jobs page: the print queue and the bed (queue.js), every job with its state, submitting a
+// job (its YAML and the files it names, as `fibrecell submit` sends them), and the actions its
+// state allows. The service decides: a refused action shows the service's own reason.
 import { el, errorText } from "./ui.js";
+import { queueCard } from "./queue.js";
 
 // Which buttons a state shows (job_state.hpp has the one table; the service still checks).
 export const actions = {
-  planning: ["abort"],
-  planned: ["start", "replan", "abort", "remove"],
+  planning: ["queue", "abort"],
+  planned: ["start", "queue", "replan", "abort", "remove"],
   starting: ["abort"],
   printing: ["pause", "abort"],
   pausing: ["abort"],
@@ -33,7 +34,8 @@ export async function act(rpc, action, id, message) {
   if (action === "abort" && !confirm(`Abort job ${id}? This cannot be resumed.`)) return;
   if (action === "remove" && !confirm(`Remove job ${id} and its files?`)) return;
   try {
-    await rpc.call(`job.${action}`, { job: id });
+    if (action === "queue") await rpc.call("queue.add", { job: id });
+    else await rpc.call(`job.${action}`, { job: id });
   } catch (e) {
     message.textContent = `job ${id}: ${errorText(e)}`;
   }
@@ -99,8 +101,12 @@ export async function render(main, { rpc }) {
   const message = el("p", { class: "error", id: "jobs-message", role: "alert" });
   const holder = el("div", { id: "jobs-holder" });
   const redraw = () => holder.replaceChildren(table(rpc, message));
-  main.append(submitForm(rpc, (job) => { jobs.set(job.id, job); redraw(); }), el("h2", {}, "Jobs"), message, holder);
-  await rpc.subscribe(["*"]);  // every job's state changes
+  const queue = queueCard(rpc);
+  main.append(submitForm(rpc, (job) => { jobs.set(job.id, job); redraw(); }), queue.card,
+              el("h2", {}, "Jobs"), message, holder);
+  await rpc.subscribe(["*"]);  // every job's state changes, and the queue's
+  unsubscribe.push(rpc.on("notify.queue", (q) => queue.draw(q)));
+  await queue.refresh();
   unsubscribe.push(rpc.on("notify.job_state", (job) => {
     if (job.state === "removed") jobs.delete(job.id); else jobs.set(job.id, job);
     redraw();
