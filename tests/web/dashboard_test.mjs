@@ -2,7 +2,9 @@
 // fibrecelld on a simulated cell: a wrong token is refused; log in, submit a job (the bundled strip:
 // its YAML and mesh, as `fibrecell submit` sends them), watch it plan, start it and pause it at once,
 // see the temperatures on the cell page, resume, see it complete with its result; a second browser
-// (its own login) sees the same job live, its progress moving and the robot on the layer. Screenshots of each page go to --out.
+// (its own login) sees the same job live, its progress moving and the robot on the layer; then two
+// more jobs are queued, reordered on the queue card and the bed cleared. Screenshots of each page go
+// to --out.
 // Exit 0 pass, 1 fail, 77 skip (no Chromium or puppeteer-core).
 //
 //   node dashboard_test.mjs --fibrecelld BIN --web-root DIR --job FILE --mesh FILE --out DIR
@@ -108,6 +110,27 @@ async function waitForState(page, selector, states, options = long) {
   return jobState(page, selector);
 }
 
+// Submits the job from the Jobs page's form (its YAML and mesh); resolves with its id.
+async function submit(page) {
+  await page.waitForSelector("#submit-form");
+  const before = await page.$eval("#submit-message", (e) => e.textContent);
+  const yaml = await page.$("#submit-yaml");
+  await yaml.uploadFile(resolve(args.job));
+  const files = await page.$("#submit-files");
+  await files.uploadFile(resolve(args.mesh));
+  await page.click("#submit-form button[type=submit]");
+  await page.waitForFunction((was) => {
+    const text = document.querySelector("#submit-message").textContent;
+    return text !== was && /job \d+ .* submitted/.test(text);
+  }, {}, before);
+  return Number((await page.$eval("#submit-message", (e) => e.textContent)).match(/job (\d+)/)[1]);
+}
+
+// The queue card's job ids, in order.
+async function queued(page) {
+  return page.$$eval("#queue-table tr[data-queued]", (rows) => rows.map((r) => Number(r.dataset.queued)));
+}
+
 async function main() {
   const port = await startService();
   const base = `http://127.0.0.1:${port}/`;
@@ -139,14 +162,7 @@ async function main() {
 
   // Submit the job as `fibrecell submit` would: its YAML and its mesh.
   await page.goto(base + "#/jobs");
-  await page.waitForSelector("#submit-form");
-  const yaml = await page.$("#submit-yaml");
-  await yaml.uploadFile(resolve(args.job));
-  const files = await page.$("#submit-files");
-  await files.uploadFile(resolve(args.mesh));
-  await page.click("#submit-form button[type=submit]");
-  await page.waitForFunction(() => /job \d+ .* submitted/.test(document.querySelector("#submit-message").textContent));
-  const id = Number((await page.$eval("#submit-message", (e) => e.textContent)).match(/job (\d+)/)[1]);
+  const id = await submit(page);
   step(`job ${id} submitted`);
 
   // Its own page: planning, then the plan's figures and layers.
@@ -241,10 +257,33 @@ async function main() {
   if (seen.buttonsAt.length !== 1) fail(`the action buttons moved while it printed: at ${seen.buttonsAt.join(", ")} px`);
   step(`the second browser's progress moved (${moved.length} values) and showed the robot`);
 
-  // The jobs and log pages.
+  // The jobs page: the queue card says whose part is on the bed (docs/queue.md). Two more jobs,
+  // queued from their rows while they plan, are reordered with the card's arrows, and the
+  // operator clears the bed (the cell starts nothing by itself: auto_start manual).
   await page.goto(base + "#/jobs");
   await page.waitForSelector(`tr[data-job="${id}"] .state-${end}`);
+  await page.waitForFunction((job) => document.querySelector("#bed-state").textContent.includes(`not clear: job ${job}`), {}, id);
+  const second = await submit(page);
+  const third = await submit(page);
+  for (const job of [second, third]) {
+    // Clicked in the page at once: the row is drawn again with each planning progress.
+    await page.waitForSelector(`tr[data-job="${job}"] button[data-action="queue"]`);
+    await page.$eval(`tr[data-job="${job}"] button[data-action="queue"]`, (b) => b.click());
+    await page.waitForSelector(`#queue-table tr[data-queued="${job}"]`);
+  }
+  if (JSON.stringify(await queued(page)) !== JSON.stringify([second, third]))
+    fail(`the queue shows ${JSON.stringify(await queued(page))}, not [${second}, ${third}]`);
+  await page.click(`#queue-table tr[data-queued="${second}"] button[data-action="down"]`);
+  await page.waitForFunction((first) => {
+    const row = document.querySelector("#queue-table tr[data-queued]");
+    return row && Number(row.dataset.queued) === first;
+  }, {}, third);
+  if (JSON.stringify(await queued(page)) !== JSON.stringify([third, second]))
+    fail(`after "down" the queue shows ${JSON.stringify(await queued(page))}, not [${third}, ${second}]`);
+  await page.click("#clear-cell");
+  await page.waitForFunction(() => document.querySelector("#bed-state").textContent === "bed clear");
   await shot(page, "jobs");
+  step(`the bed held job ${id}'s part; jobs ${second} and ${third} queued, reordered, the bed cleared`);
   await page.goto(base + "#/log");
   await page.waitForFunction(() => document.querySelector("#log-lines").textContent.includes("job"));
   await shot(page, "log");
