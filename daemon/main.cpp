@@ -2,6 +2,7 @@
 // the cell YAML and applies what needs no restart. Under systemd (Type=notify) it reports READY
 // once the socket listens, a STATUS line, and pings the watchdog from its event loop.
 
+#include "config/build_info.hpp"
 #include "config/logging.hpp"
 #include "config/yaml_section.hpp"
 #include "daemon/service/service.hpp"
@@ -56,6 +57,7 @@ void watchdog(boost::asio::steady_timer& timer, fibrecell::daemon::service::Syst
 
 int main(int argc, char** argv) {
     CLI::App app{"fibrecelld - robotic continuous-fibre printing cell service"};
+    app.set_version_flag("--version", "fibrecelld " + fibrecell::config::build_name());
     std::string config_path;
     bool check_only = false;
     Overrides overrides;

@@ -211,6 +211,14 @@ bool JobsComponent::join(Deadline deadline) {
 
 JobRecord JobsComponent::abort_planning(std::int64_t id) { return planner_->abort(id); }
 
+void JobsComponent::view_changed(std::int64_t id) {
+    try {
+        publish_job(store_->get(id));
+    } catch (const JobNotFound&) {
+        // Removed meanwhile: its watchers heard so.
+    }
+}
+
 json JobsComponent::job_json(const JobRecord& r) const {
     json j = {{"id", r.id},
               {"name", r.name},

@@ -55,6 +55,9 @@ class JobsComponent : public component::Component {
     nlohmann::json job_json(const JobRecord& record) const;
     // job.abort of a job still planning.
     JobRecord abort_planning(std::int64_t id);
+    // What a job view hook adds changed without a state change (a start refused once planned):
+    // notify.job_state goes out again, so that watchers need not poll for it.
+    void view_changed(std::int64_t id);
 
   private:
     void publish_job(const JobRecord& record);

@@ -141,6 +141,7 @@ void PrinterComponent::start_when_planned(const JobRecord& r) {
             start_refused_[r.id] = e.what();
         }
         spdlog::warn("job {} planned; not started: {}", r.id, e.what());
+        jobs_.view_changed(r.id);
     }
 }
 

@@ -1,5 +1,6 @@
 #include "daemon/service/service.hpp"
 
+#include "config/build_info.hpp"
 #include "config/logging.hpp"
 #include "daemon/devices/cell_component.hpp"
 #include "daemon/jobs/jobs_component.hpp"
@@ -65,7 +66,8 @@ void Service::register_server_info() {
         "server.info",
         [this](const json&, const api::CallContext&) {
             return json{{"service", "fibrecelld"},
-                        {"version", FIBRECELL_VERSION},
+                        {"version", config::build_version()},
+                        {"commit", config::build_commit()},
                         {"cell", config_.cell.name},
                         {"simulated", config_.cell.simulated},
                         {"pid", static_cast<long>(::getpid())},

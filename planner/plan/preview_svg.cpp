@@ -219,7 +219,7 @@ std::string layer_svg(const ToolpathLayer& layer, const LayerOutline* outline,
         append_polyline_d(out, frame, path.points, path.closed);
         out += "\"/>\n";
     }
-    out += "</g>\n<text x=\"1\" y=\"2.5\">layer " + std::to_string(layer.index) + " (" +
+    out += "</g>\n<text x=\"1\" y=\"2.5\">layer " + std::to_string(layer.index + 1) + " (" +
            std::string(to_string(layer.head)) + ") z = " + fixed(layer.z, 3) + " mm</text>\n";
     out += "</svg>\n";
     return out;
@@ -240,7 +240,7 @@ std::string preview_index_html(const std::vector<ToolpathLayer>& layers,
     for (const ToolpathLayer& layer : layers) {
         const std::string head(to_string(layer.head));
         out += "<li class=\"" + head + "\"><a href=\"" + preview_svg_name(layer.index) + "\">" +
-               "layer " + std::to_string(layer.index) + ": " + head + ", z = " + fixed(layer.z, 3) +
+               "layer " + std::to_string(layer.index + 1) + ": " + head + ", z = " + fixed(layer.z, 3) +
                " mm, " + std::to_string(layer.paths.size()) + " paths</a></li>\n";
     }
     out += "</ol>\n<main>\n<p><input id=\"slider\" type=\"range\" min=\"0\" max=\"" +

@@ -313,7 +313,7 @@ TEST(PrintProgram, IdleNozzleClearanceViolationIsReported) {
         EXPECT_EQ(i.path, 0);
         EXPECT_EQ(i.point, 0);
         EXPECT_NE(i.message.find("idle ccf nozzle"), std::string::npos) << i.message;
-        EXPECT_NE(std::string(e.what()).find("layer 0 path 0 point 0"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("layer 1 path 1 point 1"), std::string::npos);
     }
 }
 
@@ -351,7 +351,7 @@ TEST(PrintProgram, DegeneratePathsAreSkippedWithAWarning) {
     l.paths.insert(l.paths.begin(), RobotPath{false, {{10, 10}, {10, 10}}});
     const PrintProgram p = build_print_program({l}, cell, {});
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("layer 0 path 0"), std::string::npos);
+    EXPECT_NE(p.warnings[0].find("layer 1 path 1"), std::string::npos);
     EXPECT_EQ(p.stats.paths, 1u);
     for (const ProgramMove& m : p.moves)
         if (m.role == MoveRole::print) {

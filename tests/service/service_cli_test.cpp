@@ -20,9 +20,9 @@ struct CliRun {
     std::string out;
 };
 
-// Runs the client with `args`; stdout and stderr together.
-CliRun fibrecell_cli(const std::string& args) {
-    const std::string cmd = fibrecell::test::binary_path("tools/fibrecell ") + args + " 2>&1";
+// Runs a program of this build with `args`; stdout and stderr together.
+CliRun fibrecell_cli_program(const std::string& program, const std::string& args) {
+    const std::string cmd = fibrecell::test::binary_path(program) + " " + args + " 2>&1";
     CliRun r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -33,12 +33,30 @@ CliRun fibrecell_cli(const std::string& args) {
     return r;
 }
 
+// Runs the client with `args`.
+CliRun fibrecell_cli(const std::string& args) { return fibrecell_cli_program("tools/fibrecell", args); }
+
 }  // namespace
 
 TEST_F(ServiceTest, TheClientSaysClearlyWhenTheServiceIsNotRunning) {
     const CliRun r = fibrecell_cli("status --socket " + socket().string());
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.out, "fibrecell: fibrecelld is not running (no socket at " + socket().string() + ")\n");
+}
+
+// Both programs and the running service name the same build: its version and the commit of its
+// sources (a bug report, a history record).
+TEST_F(ServiceTest, TheProgramsAndTheServiceNameTheirBuild) {
+    start_service(write_config());
+    const json info = client().call("server.info");
+    const std::string build = info.value("version", "") + " (commit " + info.value("commit", "") + ")";
+    EXPECT_THAT(info.value("commit", ""), ::testing::MatchesRegex("[0-9a-f]{7,}(-dirty)?|unknown"));
+    const CliRun client_version = fibrecell_cli("--version");
+    EXPECT_EQ(client_version.status, 0);
+    EXPECT_EQ(client_version.out, "fibrecell " + build + "\n");
+    const CliRun service_version = fibrecell_cli_program("daemon/fibrecelld", "--version");
+    EXPECT_EQ(service_version.status, 0);
+    EXPECT_EQ(service_version.out, "fibrecelld " + build + "\n");
 }
 
 TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {

@@ -1,5 +1,6 @@
 // fibrecell: the operator's command-line client: offline planning and the service's verbs.
 
+#include "config/build_info.hpp"
 #include "config/logging.hpp"
 #include "tools/fibrecell/compare_command.hpp"
 #include "tools/fibrecell/plan_command.hpp"
@@ -10,6 +11,7 @@
 
 int main(int argc, char** argv) {
     CLI::App app{"fibrecell - plan and print continuous-fibre parts"};
+    app.set_version_flag("--version", "fibrecell " + fibrecell::config::build_name());
     app.require_subcommand(1);
     bool verbose = false;
     app.add_flag("-v,--verbose", verbose, "log planner details to stderr");

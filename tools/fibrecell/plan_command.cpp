@@ -99,7 +99,7 @@ void print_layer_summary(const planner::LayerStageResult& layers, const std::str
             "coverage   %.3f (fibre length x W over the fibre region, %.0f mm^2), %.3f of the region "
             "under a ribbon; least on layer %d: %.3f; mean path %.1f mm\n",
             s.coverage.coverage(), s.coverage.region_mm2, s.coverage.covered_fraction(),
-            least->first, least->second.coverage(),
+            least->first + 1, least->second.coverage(),  // counted from 1, as the dashboard does
             s.fibre_paths > 0 ? s.fibre_length_mm / s.fibre_paths : 0.0);
     }
     if (s.budget.layers > 0) {

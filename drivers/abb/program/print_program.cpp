@@ -23,11 +23,12 @@ struct PreparedPath {
     std::size_t cut = no_index;  // index into points
 };
 
+// Counted from 1, as people count them (the plan's files count from 0).
 std::string where(int layer, int path, int point) {
     std::ostringstream s;
-    s << "layer " << layer;
-    if (path >= 0) s << " path " << path;
-    if (point >= 0) s << " point " << point;
+    s << "layer " << layer + 1;
+    if (path >= 0) s << " path " << path + 1;
+    if (point >= 0) s << " point " << point + 1;
     return s.str();
 }
 

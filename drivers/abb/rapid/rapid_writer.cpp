@@ -83,9 +83,10 @@ std::string tool_name(Nozzle n) {
 
 std::string describe(const ProgramMove& m, std::size_t index) {
     std::string s;
-    if (m.layer >= 0) s += "layer " + std::to_string(m.layer);
-    if (m.path >= 0) s += " path " + std::to_string(m.path);
-    if (m.point >= 0) s += " point " + std::to_string(m.point);
+    // Counted from 1, as people count them (and the dashboard, the CLI and result.json).
+    if (m.layer >= 0) s += "layer " + std::to_string(m.layer + 1);
+    if (m.path >= 0) s += " path " + std::to_string(m.path + 1);
+    if (m.point >= 0) s += " point " + std::to_string(m.point + 1);
     if (m.role == MoveRole::print && m.point < 0) s += " cut point";
     if (!s.empty()) s += ", ";
     s += std::string(to_string(m.role)) + " move " + std::to_string(index + 1);
