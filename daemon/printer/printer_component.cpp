@@ -78,6 +78,7 @@ void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
             rest.erase("journal_lost");
         }
         const std::int64_t id = job_or_on_cell(rest, ctx);
+        std::unique_lock one(start_mu_);
         const JobRecord before = as_api([&] { return jobs_.store().get(id); });
         // Re-entry after an interruption is a new start: the gates have their say.
         if (before.state == JobState::interrupted)
@@ -85,6 +86,7 @@ void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
                 throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
         if (journal_lost) as_api([&] { jobs_.store().accept_lost_journal(id); });
         const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::resume); });
+        one.unlock();
         if (before.state == JobState::interrupted)
             runner_->start(id, nullptr);  // re-entry: a new run from the resume point
         else
@@ -122,6 +124,9 @@ void PrinterComponent::stop() {
 }
 
 JobRecord PrinterComponent::start_print(std::int64_t id) {
+    // The gates' answer and the start at once: a gate's ground (a clear bed) cannot change
+    // between them.
+    std::lock_guard one(start_mu_);
     if (const auto reason = held_at_gate(as_api([&] { return jobs_.store().get(id); })))
         throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
     const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::start); });
@@ -134,6 +139,8 @@ JobRecord PrinterComponent::start_print(std::int64_t id) {
 void PrinterComponent::start_when_planned(const JobRecord& r) {
     if (r.state != JobState::planned || !r.start_when_planned) return;
     try {
+        // Started already (by the queue, or by hand, since its plan was done): nothing to do.
+        if (jobs_.store().get(r.id).state != JobState::planned) return;
         start_print(r.id);
     } catch (const std::exception& e) {
         {

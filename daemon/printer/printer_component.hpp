@@ -68,6 +68,7 @@ class PrinterComponent : public component::Component {
     PrintRunnerOptions options_;
     component::Endpoints endpoints_;
     std::vector<StartGate> gates_;
+    std::mutex start_mu_;  // a gate's answer and the start it allows, as one step
     // Jobs submitted with `start` whose start was refused once planned, and why: their view says
     // so (`start_refused`), so that a watching client need not wait for a start that will not come.
     mutable std::mutex refused_mu_;

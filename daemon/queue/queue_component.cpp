@@ -24,15 +24,15 @@ namespace {
 
 bool queueable(JobState s) { return s == JobState::planning || s == JobState::planned; }
 
-// A print that ended, or stopped with its part on the bed.
-bool left_the_cell(JobState s) {
-    return s == JobState::completed || s == JobState::completed_with_warnings ||
-           s == JobState::aborted || s == JobState::failed || s == JobState::interrupted;
-}
-
 // Ends the queue cannot go past without the operator's word.
 bool needs_a_decision(JobState s) {
     return s == JobState::aborted || s == JobState::failed || s == JobState::interrupted;
+}
+
+// The bed's job is still on the cell (its print runs or holds): nothing else can start anyway.
+bool still_on_the_cell(const std::string& outcome) {
+    return outcome == "starting" || outcome == "printing" || outcome == "pausing" ||
+           outcome == "paused";
 }
 
 std::string job_name(std::int64_t id) { return "job " + std::to_string(id); }
@@ -63,14 +63,18 @@ std::optional<std::string> QueueComponent::held_by_bed(const JobRecord& r) const
     std::lock_guard lock(mu_);
     const Bed& bed = state_.bed;
     if (bed.clear) return std::nullopt;
-    // The interrupted job goes on on its own part; a job that cannot start anyway hears the
-    // store's own reason (it is completed, it is printing).
-    if (bed.job == r.id && r.state == JobState::interrupted) return std::nullopt;
+    // A job that cannot start anyway hears the store's own reason (it is completed; another job
+    // is on the cell); the interrupted job goes on on its own part.
     if (r.state != JobState::planned && r.state != JobState::interrupted) return std::nullopt;
-    std::string what = bed.job > 0 ? job_name(bed.job) + "'s part (" + bed.outcome + " at " +
-                                         bed.since + ") is on the bed"
-                                   : "the queue's file was unreadable at start-up (" +
-                                         bed.since + "): the bed was not seen clear";
+    if (bed.job == r.id && r.state == JobState::interrupted) return std::nullopt;
+    if (bed.job > 0 && still_on_the_cell(bed.outcome)) return std::nullopt;
+    if (bed.job > 0 && bed.outcome == "interrupted")
+        return job_name(bed.job) + " is interrupted with its part on the bed: resume it, or abort it "
+                                   "and take the part off (`fibrecell clear`)";
+    const std::string what = bed.job > 0 ? job_name(bed.job) + "'s part (" + bed.outcome + " at " +
+                                               bed.since + ") is on the bed"
+                                         : "the queue's file was unreadable at start-up (" +
+                                               bed.since + "): the bed was not seen clear";
     return "the cell is not clear: " + what +
            "; take the part off, then say so with `fibrecell clear`";
 }
@@ -98,9 +102,11 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
             if (!queueable(r.state))
                 throw ApiError::conflict(job_name(id) + " is " + std::string(to_string(r.state)) +
                                          ": only a job planning or planned can be queued");
+            refuse_before_a_starting_head(position);
+            const QueueState before = state_;
             state_.jobs.insert(state_.jobs.begin() + (position - 1), id);
+            commit(before);
             spdlog::info("queue.added {} at {} by {}", job_name(id), position, ctx.peer);
-            changed();
         }
         start_next_if_due();
         std::lock_guard lock(mu_);
@@ -108,34 +114,45 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
     });
 
     endpoints.method("queue.move", [this](const json& params, const CallContext& ctx) {
-        api::ParamReader p(ctx.method, params);
+        {
+            api::ParamReader p(ctx.method, params);
+            std::lock_guard lock(mu_);
+            std::size_t from = 0;
+            const std::int64_t id = queued_job(p, &from);
+            if (!p.has("position")) p.fail("position", "is required (1 is the next to print)");
+            const auto n = static_cast<std::int64_t>(state_.jobs.size());
+            const std::int64_t to = p.integer_or("position", 1, 1, n);
+            p.finish();
+            if (starting_.contains(id))
+                throw ApiError::conflict(job_name(id) + " is starting: it keeps its place");
+            refuse_before_a_starting_head(to);
+            const QueueState before = state_;
+            state_.jobs.erase(state_.jobs.begin() + static_cast<std::ptrdiff_t>(from));
+            state_.jobs.insert(state_.jobs.begin() + (to - 1), id);
+            commit(before);
+            spdlog::info("queue.moved {} to {} by {}", job_name(id), to, ctx.peer);
+        }
+        start_next_if_due();  // a planned job may now be next
         std::lock_guard lock(mu_);
-        std::size_t from = 0;
-        const std::int64_t id = queued_job(p, &from);
-        if (!p.has("position")) p.fail("position", "is required (1 is the next to print)");
-        const auto n = static_cast<std::int64_t>(state_.jobs.size());
-        const std::int64_t to = p.integer_or("position", 1, 1, n);
-        p.finish();
-        if (starting_.contains(id) || (from == 0 && starting_.contains(state_.jobs.front())))
-            throw ApiError::conflict("the queue's next job is starting: it cannot move now");
-        state_.jobs.erase(state_.jobs.begin() + static_cast<std::ptrdiff_t>(from));
-        state_.jobs.insert(state_.jobs.begin() + (to - 1), id);
-        spdlog::info("queue.moved {} to {} by {}", job_name(id), to, ctx.peer);
-        changed();
         return view();
     });
 
     endpoints.method("queue.remove", [this](const json& params, const CallContext& ctx) {
-        api::ParamReader p(ctx.method, params);
+        {
+            api::ParamReader p(ctx.method, params);
+            std::lock_guard lock(mu_);
+            std::size_t at = 0;
+            const std::int64_t id = queued_job(p, &at);
+            p.finish();
+            if (starting_.contains(id))
+                throw ApiError::conflict(job_name(id) + " is starting: abort it to stop it");
+            const QueueState before = state_;
+            state_.jobs.erase(state_.jobs.begin() + static_cast<std::ptrdiff_t>(at));
+            commit(before);
+            spdlog::info("queue.removed {} by {}", job_name(id), ctx.peer);
+        }
+        start_next_if_due();
         std::lock_guard lock(mu_);
-        std::size_t at = 0;
-        const std::int64_t id = queued_job(p, &at);
-        p.finish();
-        if (starting_.contains(id))
-            throw ApiError::conflict(job_name(id) + " is starting: abort it to stop it");
-        state_.jobs.erase(state_.jobs.begin() + static_cast<std::ptrdiff_t>(at));
-        spdlog::info("queue.removed {} by {}", job_name(id), ctx.peer);
-        changed();
         return view();
     });
 
@@ -143,10 +160,11 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
         api::ParamReader(ctx.method, params).finish();
         std::lock_guard lock(mu_);
         if (!state_.paused) {
+            const QueueState before = state_;
             state_.paused = true;
             state_.paused_reason = "paused by " + ctx.peer;
+            commit(before);
             spdlog::info("queue.paused by {}", ctx.peer);
-            changed();
         }
         return view();
     });
@@ -156,10 +174,11 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
         {
             std::lock_guard lock(mu_);
             if (state_.paused) {
+                const QueueState before = state_;
                 state_.paused = false;
                 state_.paused_reason.clear();
+                commit(before);
                 spdlog::info("queue.resumed by {}", ctx.peer);
-                changed();
             }
         }
         start_next_if_due();
@@ -174,37 +193,42 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
         std::int64_t next = 0;
         {
             std::lock_guard lock(mu_);
+            drop_gone_jobs();
             if (state_.jobs.empty()) throw ApiError::conflict("the queue is empty");
             next = state_.jobs.front();
+            const JobRecord r = as_api([&] { return jobs_.store().get(next); });
+            if (r.state != JobState::planned)
+                throw ApiError::conflict(job_name(next) + ", the next in the queue, is " +
+                                         std::string(to_string(r.state)) + ", not planned");
+            queue_started_ = next;
         }
-        const JobRecord r = as_api([&] { return jobs_.store().get(next); });
-        if (r.state != JobState::planned)
-            throw ApiError::conflict(job_name(next) + ", the next in the queue, is " +
-                                     std::string(to_string(r.state)) + ", not planned");
         printer_.start_print(next);
         spdlog::info("queue.next {} started by {}", job_name(next), ctx.peer);
         std::lock_guard lock(mu_);
         return view();
     });
 
-    endpoints.control_method("cell.clear", [this](const json& params, const CallContext& ctx) {
+    // Not a control method: with auto_start after_clear it starts a print.
+    endpoints.method("cell.clear", [this](const json& params, const CallContext& ctx) {
         api::ParamReader(ctx.method, params).finish();
-        for (const JobRecord& r : jobs_.store().list()) {
-            if (r.state == JobState::interrupted)
-                throw ApiError::conflict(job_name(r.id) + " is interrupted with its part on the bed: "
-                                         "resume it (`fibrecell resume " + std::to_string(r.id) +
-                                         "`) or abort it first");
-            if (jobs::holds_cell(r.state))
-                throw ApiError::conflict(job_name(r.id) + " is " + std::string(to_string(r.state)) +
-                                         " on the cell: clear the bed once it has ended");
-        }
         {
             std::lock_guard lock(mu_);
+            for (const JobRecord& r : jobs_.store().list()) {
+                if (r.state == JobState::interrupted)
+                    throw ApiError::conflict(job_name(r.id) + " is interrupted with its part on the "
+                                             "bed: resume it (`fibrecell resume " +
+                                             std::to_string(r.id) + "`) or abort it first");
+                if (jobs::holds_cell(r.state))
+                    throw ApiError::conflict(job_name(r.id) + " is " + std::string(to_string(r.state)) +
+                                             " on the cell: clear the bed once it has ended");
+            }
             if (!state_.bed.clear) {
-                spdlog::info("cell.cleared by {} ({} was on the bed)", ctx.peer,
-                             state_.bed.job > 0 ? job_name(state_.bed.job) + "'s part" : "not known what");
+                const QueueState before = state_;
+                const std::string was = state_.bed.job > 0 ? job_name(state_.bed.job) + "'s part"
+                                                           : "not known what";
                 state_.bed = {};
-                changed();
+                commit(before);
+                spdlog::info("cell.cleared by {} ({} was on the bed)", ctx.peer, was);
             }
         }
         start_next_if_due();
@@ -214,6 +238,12 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
 
     endpoints.event(api::notify::queue);
     endpoints_ = endpoints;
+}
+
+void QueueComponent::refuse_before_a_starting_head(std::int64_t position) const {
+    if (position == 1 && !state_.jobs.empty() && starting_.contains(state_.jobs.front()))
+        throw ApiError::conflict(job_name(state_.jobs.front()) +
+                                 ", the next in the queue, is starting: nothing goes before it now");
 }
 
 std::int64_t QueueComponent::queued_job(api::ParamReader& p, std::size_t* position) {
@@ -228,16 +258,32 @@ std::int64_t QueueComponent::queued_job(api::ParamReader& p, std::size_t* positi
                              ", not queued");
 }
 
+void QueueComponent::drop_gone_jobs() {
+    bool dropped = false;
+    std::erase_if(state_.jobs, [&](std::int64_t id) {
+        try {
+            jobs_.store().get(id);
+            return false;
+        } catch (const jobs::JobNotFound&) {
+            spdlog::warn("queue.left {}: it was removed", job_name(id));
+            dropped = true;
+            return true;
+        }
+    });
+    if (dropped) changed();
+}
+
 void QueueComponent::start() {
     std::lock_guard lock(mu_);
     try {
         state_ = load_queue_state(file_);
     } catch (const std::exception& e) {
-        // The safe side: nothing starts until the operator has looked at the bed.
+        // The safe side: nothing starts until the operator has looked at the bed. A copy is kept
+        // (the new state replaces the file below).
         std::filesystem::path aside = file_;
         aside += ".unreadable";
         std::error_code ec;
-        std::filesystem::rename(file_, aside, ec);
+        std::filesystem::copy_file(file_, aside, std::filesystem::copy_options::overwrite_existing, ec);
         spdlog::error("queue.unreadable {}; kept as {}; the queue starts empty and the cell not "
                       "clear",
                       e.what(), aside.string());
@@ -245,7 +291,7 @@ void QueueComponent::start() {
         state_.bed = {.clear = false, .job = 0, .outcome = "unknown", .since = config::utc_now()};
     }
     // What changed while the service was down: queued jobs that went away or on, and the print
-    // that was on the bed when it stopped (the store has it interrupted now).
+    // on the bed (a print the service did not see end is interrupted now).
     jobs::JobStore& store = jobs_.store();
     std::erase_if(state_.jobs, [&](std::int64_t id) {
         try {
@@ -258,17 +304,27 @@ void QueueComponent::start() {
         return true;
     });
     Bed& bed = state_.bed;
-    if (!bed.clear && bed.job > 0 && bed.outcome == "printing") {
+    if (!bed.clear && bed.job > 0) {
         try {
             const JobRecord r = store.get(bed.job);
-            bed.outcome = std::string(to_string(r.state));
-            if (needs_a_decision(r.state)) {
+            const std::string now(to_string(r.state));
+            if (now != bed.outcome && needs_a_decision(r.state)) {
                 state_.paused = true;
-                state_.paused_reason = job_name(r.id) + " " + bed.outcome;
+                state_.paused_reason = job_name(r.id) + " " + now;
             }
+            bed.outcome = now;
         } catch (const jobs::JobNotFound&) {
             bed.outcome = "removed";
         }
+    }
+    // An interrupted job's part is on the bed whatever the file said (it was lost, or written
+    // before the print began).
+    for (const JobRecord& r : store.list()) {
+        if (r.state != JobState::interrupted || (!bed.clear && bed.job == r.id)) continue;
+        if (!bed.clear && bed.job > 0) continue;  // another part is there: the operator decides
+        bed = {.clear = false, .job = r.id, .outcome = "interrupted", .since = config::utc_now()};
+        state_.paused = true;
+        state_.paused_reason = job_name(r.id) + " interrupted";
     }
     spdlog::info("queue.loaded {} jobs, {}{}", state_.jobs.size(),
                  bed.clear ? "the cell clear" : "the cell not clear",
@@ -279,24 +335,63 @@ void QueueComponent::start() {
 void QueueComponent::serve() { start_next_if_due(); }
 
 void QueueComponent::job_changed(const JobRecord& r) {
-    bool planned = false;
+    bool may_start_next = false;
     {
         std::lock_guard lock(mu_);
         bool touched = false;
         const auto at = std::find(state_.jobs.begin(), state_.jobs.end(), r.id);
         const bool queued = at != state_.jobs.end();
         const bool was_starting = starting_.contains(r.id);
+        // Notifications of one job may come from two threads (the API's abort, the runner's
+        // progress) out of order: what the bed says is the store's state now.
+        JobState now = r.state;
+        try {
+            now = jobs_.store().get(r.id).state;
+        } catch (const jobs::JobNotFound&) {
+        }
+
+        // A start puts the job's part on the bed (the pre-flight may move the head already); a
+        // start the cell refused before anything moved (back to planned) takes it off again.
+        if (r.state == JobState::starting && (state_.bed.clear || state_.bed.job != r.id)) {
+            started_on_clear_ = state_.bed.clear ? r.id : 0;
+            state_.bed = {.clear = false, .job = r.id, .outcome = "starting", .since = config::utc_now()};
+            touched = true;
+        }
+        if (!state_.bed.clear && state_.bed.job == r.id) {
+            const std::string outcome(to_string(now));
+            if (now == JobState::planned) {
+                if (started_on_clear_ == r.id) {
+                    state_.bed = {};
+                    touched = true;
+                }
+            } else if (outcome != state_.bed.outcome) {
+                state_.bed.outcome = outcome;
+                state_.bed.since = config::utc_now();
+                touched = true;
+                // An aborted, failed or interrupted print leaves the queue paused until the
+                // operator decides.
+                if (needs_a_decision(now)) {
+                    state_.paused = true;
+                    state_.paused_reason =
+                        job_name(r.id) + " " + outcome + (r.reason.empty() ? "" : ": " + r.reason);
+                }
+            }
+            if (now != JobState::starting) started_on_clear_ = 0;
+        }
+
         if (queued && r.state == JobState::starting) starting_.insert(r.id);
         if (queued && r.state == JobState::planned) {
             if (was_starting) {
-                // Its start was refused (nothing moved): it keeps its place, and the queue waits
-                // for the operator rather than trying again and again.
                 starting_.erase(r.id);
-                state_.paused = true;
-                state_.paused_reason = job_name(r.id) + " could not start: " + r.reason;
-                touched = true;
+                // Its start was refused (nothing moved): it keeps its place; a start the queue
+                // made waits for the operator rather than being tried again and again.
+                if (queue_started_ == r.id) {
+                    state_.paused = true;
+                    state_.paused_reason = job_name(r.id) + " could not start: " + r.reason;
+                    touched = true;
+                }
             } else {
-                planned = true;
+                may_start_next = true;  // its plan is ready
             }
         }
         if (queued && !queueable(r.state) && r.state != JobState::starting) {
@@ -304,29 +399,12 @@ void QueueComponent::job_changed(const JobRecord& r) {
             starting_.erase(r.id);
             spdlog::info("queue.left {}: {}", job_name(r.id), to_string(r.state));
             touched = true;
+            may_start_next = true;  // the next may be due (it left without printing)
         }
-        if (r.state == JobState::printing &&
-            (state_.bed.clear || state_.bed.job != r.id || state_.bed.outcome != "printing")) {
-            state_.bed = {.clear = false, .job = r.id, .outcome = "printing", .since = config::utc_now()};
-            touched = true;
-        }
-        const bool on_bed = !state_.bed.clear && state_.bed.job == r.id;
-        if (on_bed && left_the_cell(r.state)) {
-            state_.bed.outcome = std::string(to_string(r.state));
-            state_.bed.since = config::utc_now();
-            touched = true;
-        }
-        // An aborted or interrupted print (or one aborted while it started) leaves the queue
-        // paused until the operator decides.
-        if ((on_bed || (was_starting && r.state != JobState::starting)) && needs_a_decision(r.state)) {
-            state_.paused = true;
-            state_.paused_reason = job_name(r.id) + " " + std::string(to_string(r.state)) +
-                                   (r.reason.empty() ? "" : ": " + r.reason);
-            touched = true;
-        }
+        if (queue_started_ == r.id && r.state != JobState::starting) queue_started_ = 0;
         if (touched) changed();
     }
-    if (planned) start_next_if_due();
+    if (may_start_next) start_next_if_due();
 }
 
 void QueueComponent::start_next_if_due() {
@@ -334,26 +412,36 @@ void QueueComponent::start_next_if_due() {
     // One at a time: two callers (a job planned, the operator's clear) must not both start the
     // next job, nor the second take the store's refusal for a reason to pause.
     std::lock_guard one(start_mu_);
+    jobs::JobStore& store = jobs_.store();
     std::int64_t next = 0;
     {
         std::lock_guard lock(mu_);
+        drop_gone_jobs();
         if (!state_.bed.clear || state_.paused || state_.jobs.empty()) return;
         next = state_.jobs.front();
         if (starting_.contains(next)) return;
+        try {
+            if (store.get(next).state != JobState::planned) return;  // it starts once planned
+        } catch (const jobs::JobNotFound&) {
+            return;
+        }
+        for (const JobRecord& r : store.list())
+            if (jobs::holds_cell(r.state)) return;  // it starts after that one, and a clear
+        queue_started_ = next;
     }
-    jobs::JobStore& store = jobs_.store();
-    try {
-        if (store.get(next).state != JobState::planned) return;  // it starts once planned
-    } catch (const jobs::JobNotFound&) {
-        return;
-    }
-    for (const JobRecord& r : store.list())
-        if (jobs::holds_cell(r.state)) return;  // it starts after that one, and a clear
     try {
         printer_.start_print(next);
         spdlog::info("queue.started {}", job_name(next));
     } catch (const std::exception& e) {
         std::lock_guard lock(mu_);
+        // Started meanwhile by someone else (the operator, a submit with start): not a refusal.
+        try {
+            if (store.get(next).state != JobState::planned) return;
+        } catch (const jobs::JobNotFound&) {
+            return;
+        }
+        for (const JobRecord& r : store.list())
+            if (jobs::holds_cell(r.state)) return;
         state_.paused = true;
         state_.paused_reason = job_name(next) + " could not start: " + e.what();
         spdlog::warn("queue.paused {}", state_.paused_reason);
@@ -386,6 +474,17 @@ json QueueComponent::view() const {
     return v;
 }
 
+void QueueComponent::commit(const QueueState& before) {
+    try {
+        save_queue_state(file_, state_);
+    } catch (const std::exception& e) {
+        state_ = before;
+        throw ApiError::unavailable(std::string("unavailable: the queue could not be saved (") +
+                                    e.what() + "): nothing changed");
+    }
+    publish();
+}
+
 void QueueComponent::changed() {
     try {
         save_queue_state(file_, state_);
@@ -393,6 +492,10 @@ void QueueComponent::changed() {
         spdlog::error("queue.not_saved {}: the queue holds in memory; the next change tries again",
                       e.what());
     }
+    publish();
+}
+
+void QueueComponent::publish() const {
     endpoints_.publish({.topic = api::topic::queue,
                         .method = api::notify::queue,
                         .params = view(),

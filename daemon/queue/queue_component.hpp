@@ -45,12 +45,20 @@ class QueueComponent : public component::Component {
     void job_changed(const jobs::JobRecord& record);
     // The queue.list answer; lock held.
     nlohmann::json view() const;
-    // Saves the state and publishes notify.queue; lock held. A failed save is logged: the state
-    // holds in memory and the next change tries again.
+    // An API call's change: saved, or undone and refused (ApiError unavailable); then published.
+    // Lock held.
+    void commit(const QueueState& before);
+    // A change the jobs made: saved (a failure is logged; the state holds in memory and the next
+    // change tries again) and published. Lock held.
     void changed();
+    void publish() const;  // notify.queue; lock held
     // after_clear: starts the next queued job when the bed is clear, the queue not paused, the job
     // planned and the cell free. Lock not held.
     void start_next_if_due();
+    // Queued jobs the store no longer has (job.remove) leave the queue. Lock held.
+    void drop_gone_jobs();
+    // Nothing goes to position 1 before a next job that is starting. Lock held.
+    void refuse_before_a_starting_head(std::int64_t position) const;
     // The call's `job`, which must be queued (else a conflict that says where it is), and its
     // place (0: the next). Lock held.
     std::int64_t queued_job(api::ParamReader& params, std::size_t* position);
@@ -64,7 +72,9 @@ class QueueComponent : public component::Component {
     std::mutex start_mu_;  // start_next_if_due, one at a time
     mutable std::mutex mu_;
     QueueState state_;
-    std::set<std::int64_t> starting_;  // queued jobs the store has starting
+    std::set<std::int64_t> starting_;   // queued jobs the store has starting
+    std::int64_t queue_started_ = 0;    // the job the queue itself is starting
+    std::int64_t started_on_clear_ = 0; // a job starting on a clear bed (a refusal clears it again)
 };
 
 }  // namespace fibrecell::daemon::queue

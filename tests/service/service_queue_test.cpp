@@ -46,6 +46,7 @@ TEST_F(ServiceTest, QueuedJobsPrintInOrderOnePerClearAndTheQueueSurvivesAKill) {
         // A clear cell: the first starts as soon as it is planned.
         for (std::int64_t id : {a, b, c}) api.call("queue.add", {{"job", id}});
         ASSERT_TRUE(printed(wait_for_state(api, a, "completed", 120s)));
+        ASSERT_EQ(wait_for_state(api, b, "planned").value("state", ""), "planned");
 
         // Its part is on the bed: the next one waits, whatever asks it to start.
         const json q = api.call("queue.resume");  // the queue looks for its next job again
@@ -74,20 +75,25 @@ TEST_F(ServiceTest, QueuedJobsPrintInOrderOnePerClearAndTheQueueSurvivesAKill) {
     EXPECT_EQ(not_queued.code, api::errc::conflict);
     EXPECT_THAT(not_queued.message, HasSubstr("is completed, not queued"));
 
-    // The operator clears the bed: the next in the queue (now c) starts.
+    // The operator clears the bed: the next in the queue (now c) starts; it leaves the queue once
+    // it prints. Paused there, so that the calls below meet it on the cell whatever the load.
     api.call("cell.clear");
     ASSERT_EQ(wait_for_state(api, c, "printing").value("state", ""), "printing");
+    EXPECT_TRUE(eventually([&] { return queued(api) == std::vector<std::int64_t>{b}; }, 30s))
+        << api.call("queue.list").dump();
+    api.call("job.pause", {{"job", c}});
+    ASSERT_EQ(wait_for_state(api, c, "paused").value("state", ""), "paused");
     for (const char* method : {"queue.move", "queue.remove"}) {
         json params = {{"job", c}};
         if (std::string(method) == "queue.move") params["position"] = 1;
         const Refusal r = refusal([&] { api.call(method, params); });
         EXPECT_EQ(r.code, api::errc::conflict) << method;
-        EXPECT_THAT(r.message, HasSubstr("is printing, not queued")) << method;
+        EXPECT_THAT(r.message, HasSubstr("is paused, not queued")) << method;
     }
     const Refusal busy = refusal([&] { api.call("cell.clear"); });
     EXPECT_EQ(busy.code, api::errc::conflict);
-    EXPECT_THAT(busy.message, HasSubstr("printing on the cell"));
-    EXPECT_EQ(queued(api), (std::vector<std::int64_t>{b}));
+    EXPECT_THAT(busy.message, HasSubstr("paused on the cell"));
+    api.call("job.resume", {{"job", c}});
     ASSERT_TRUE(printed(wait_for_state(api, c, "completed", 120s)));
 
     api.call("cell.clear");
@@ -133,6 +139,8 @@ TEST_F(ServiceTest, AByHandQueueRefusesBadCallsAndPausesAfterAnAbortedPrint) {
     EXPECT_EQ(wait_for_state(api, a, "planned").value("state", ""), "planned");
     api.call("queue.next");
     ASSERT_EQ(wait_for_state(api, a, "printing").value("state", ""), "printing");
+    api.call("job.pause", {{"job", a}});  // on the cell whatever the load, then aborted
+    ASSERT_EQ(wait_for_state(api, a, "paused").value("state", ""), "paused");
     api.call("job.abort", {{"job", a}});
     EXPECT_EQ(wait_for_state(api, a, "aborted").value("state", ""), "aborted");
 
