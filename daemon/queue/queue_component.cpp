@@ -108,9 +108,7 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
             commit(before);
             spdlog::info("queue.added {} at {} by {}", job_name(id), position, ctx.peer);
         }
-        start_next_if_due();
-        std::lock_guard lock(mu_);
-        return view();
+        return next_if_due_then_view();
     });
 
     endpoints.method("queue.move", [this](const json& params, const CallContext& ctx) {
@@ -132,9 +130,7 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
             commit(before);
             spdlog::info("queue.moved {} to {} by {}", job_name(id), to, ctx.peer);
         }
-        start_next_if_due();  // a planned job may now be next
-        std::lock_guard lock(mu_);
-        return view();
+        return next_if_due_then_view();  // a planned job may now be next
     });
 
     endpoints.method("queue.remove", [this](const json& params, const CallContext& ctx) {
@@ -151,9 +147,7 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
             commit(before);
             spdlog::info("queue.removed {} by {}", job_name(id), ctx.peer);
         }
-        start_next_if_due();
-        std::lock_guard lock(mu_);
-        return view();
+        return next_if_due_then_view();
     });
 
     endpoints.method("queue.pause", [this](const json& params, const CallContext& ctx) {
@@ -181,9 +175,7 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
                 spdlog::info("queue.resumed by {}", ctx.peer);
             }
         }
-        start_next_if_due();
-        std::lock_guard lock(mu_);
-        return view();
+        return next_if_due_then_view();
     });
 
     // The operator's "print the next one now", in either auto_start mode; the gates have their
@@ -231,13 +223,17 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
                 spdlog::info("cell.cleared by {} ({} was on the bed)", ctx.peer, was);
             }
         }
-        start_next_if_due();
-        std::lock_guard lock(mu_);
-        return view();
+        return next_if_due_then_view();
     });
 
     endpoints.event(api::notify::queue);
     endpoints_ = endpoints;
+}
+
+json QueueComponent::next_if_due_then_view() {
+    start_next_if_due();
+    std::lock_guard lock(mu_);
+    return view();
 }
 
 void QueueComponent::refuse_before_a_starting_head(std::int64_t position) const {

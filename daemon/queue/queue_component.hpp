@@ -55,6 +55,8 @@ class QueueComponent : public component::Component {
     // after_clear: starts the next queued job when the bed is clear, the queue not paused, the job
     // planned and the cell free. Lock not held.
     void start_next_if_due();
+    // An API call's answer after a change: the next job started if due, then the queue.
+    nlohmann::json next_if_due_then_view();
     // Queued jobs the store no longer has (job.remove) leave the queue. Lock held.
     void drop_gone_jobs();
     // Nothing goes to position 1 before a next job that is starting. Lock held.
