@@ -1,7 +1,8 @@
 // The print queue and the clear-cell rule (docs/queue.md), against fibrecelld over its socket on
 // the simulated cell: queued jobs print in order, one per clear; nothing starts on a bed that holds
-// a part, queued or by hand; the queue, its order and the bed survive a kill -9; an aborted print
-// pauses the queue; bad calls are refused with what and why, and change nothing.
+// a part, queued or by hand; the queue, its order and the bed survive a kill -9, and an unreadable
+// queue file holds every start; an aborted print pauses the queue; bad calls are refused with what
+// and why, and change nothing.
 #include "service_fixture.hpp"
 
 #include "daemon/api/api_error.hpp"
@@ -159,6 +160,28 @@ TEST_F(ServiceTest, AByHandQueueRefusesBadCallsAndPausesAfterAnAbortedPrint) {
     const Refusal empty = refusal([&] { api.call("queue.next"); });
     EXPECT_EQ(empty.code, api::errc::conflict);
     EXPECT_THAT(empty.message, HasSubstr("empty"));
+}
+
+// A queue.json the service cannot read (a torn disk, a hand edit): it starts, keeps a copy, and
+// holds every start until the operator has looked at the bed.
+TEST_F(ServiceTest, AnUnreadableQueueFileLeavesTheCellNotClearUntilTheOperatorSaysSo) {
+    fs::create_directories(state_dir());
+    std::ofstream(state_dir() / "queue.json") << "{\"jobs\": [1, ";
+    start_service(write_config());
+    EXPECT_TRUE(service_->wait_for_log("queue.unreadable", 10s)) << service_->log();
+    EXPECT_EQ(read_file(state_dir() / "queue.json.unreadable"), "{\"jobs\": [1, ");
+    api::ApiClient api = client();
+    json q = api.call("queue.list");
+    EXPECT_FALSE(q.at("bed").at("clear").get<bool>()) << q.dump();
+    const std::int64_t id = submit_bar(api, false);
+    ASSERT_EQ(wait_for_state(api, id, "planned").value("state", ""), "planned");
+    const Refusal held = refusal([&] { api.call("job.start", {{"job", id}}); });
+    EXPECT_EQ(held.code, api::errc::conflict);
+    EXPECT_THAT(held.message, HasSubstr("unreadable"));
+    q = api.call("cell.clear");
+    EXPECT_TRUE(q.at("bed").at("clear").get<bool>()) << q.dump();
+    // The new file is whole again.
+    EXPECT_TRUE(json::parse(read_file(state_dir() / "queue.json")).at("bed").at("clear").get<bool>());
 }
 
 }  // namespace service_queue_test
