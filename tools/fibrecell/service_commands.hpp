@@ -1,8 +1,9 @@
 #pragma once
-// The client verbs that talk to fibrecelld over the socket API (docs/contracts.md "Commands"):
-// submit, jobs, status, start, pause, resume, abort, remove, watch, estop. Each takes --socket
-// (default $FIBRECELL_SOCKET, then /run/fibrecelld/api.sock), --host/--port/--token for TCP and
-// --json; human output by default, one clear line and a non-zero exit code on error.
+// The client verbs of the jobs and the cell that talk to fibrecelld over the socket API
+// (docs/contracts.md "Commands"): submit, jobs, status, start, pause, resume, abort, remove,
+// replan, watch, estop (the queue's: queue_commands.hpp). Each takes the connection options of
+// service_connection.hpp and --json; human output by default, one clear line and a non-zero exit
+// code on error.
 
 #include <CLI/CLI.hpp>
 
