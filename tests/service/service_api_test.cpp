@@ -12,6 +12,7 @@
 using namespace fibrecell;
 using namespace fibrecell::test;
 using ::testing::HasSubstr;
+using ::testing::AnyOf;
 
 namespace {
 
@@ -119,16 +120,21 @@ TEST_F(ServiceTest, APrintThatFellShortOfItsPlanEndsCompletedWithWarnings) {
     const std::int64_t id = submit_bar(c, true);
     const json done = wait_for_state(c, id, "completed_with_warnings", 120s);
     ASSERT_EQ(done.value("state", ""), "completed_with_warnings") << done.dump(2) << service_->log();
-    EXPECT_THAT(done.value("reason", ""), HasSubstr("from the plan: cut at event "));
+    EXPECT_THAT(done.value("reason", ""), HasSubstr(" from the plan: "));
     EXPECT_THAT(done.value("reason", ""), HasSubstr("(result.json: shortfalls)"));
     const json& shortfalls = done["result"]["shortfalls"];
     ASSERT_TRUE(shortfalls.is_array());
-    ASSERT_FALSE(shortfalls.empty());
+    // The late cuts are there; on a loaded machine a PLA path may also end with some of its
+    // feed unsent, which is a shortfall too (the sync tests measure how often), not this test's.
+    int late_cuts = 0;
     for (const json& f : shortfalls) {
-        EXPECT_EQ(f.value("kind", ""), "late_cut");
+        const std::string kind = f.value("kind", "");
+        EXPECT_THAT(kind, AnyOf("late_cut", "pla_feed_dropped", "fibre_feed_dropped")) << f.dump();
+        late_cuts += kind == "late_cut";
         EXPECT_GT(f.value("mm", 0.0), 0.0);
         EXPECT_GE(f.value("layer", 0), 1);
     }
+    EXPECT_GT(late_cuts, 0) << shortfalls.dump(2);
     EXPECT_EQ(done["result"]["events_done"], done["result"]["events"]);  // it did end
     // The job's state on disk says the same.
     const json disk = json::parse(read_file(state_dir() / "jobs" / std::to_string(id) / "state.json"));
