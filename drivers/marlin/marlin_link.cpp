@@ -41,6 +41,9 @@ struct MarlinLink::Impl {
         std::promise<CommandOutcome> done;
     };
     std::deque<Request> requests;
+    // Lines that move or select an extruder, until their ok charges them to the ledger.
+    std::deque<std::pair<std::int64_t, std::string>> feed_lines;
+    bool cold_extrusion_refused = false;  // said before the ok of the line it refused
 
     mutable std::mutex mu;  // guards what other threads read
     std::map<std::string, bool> caps;
@@ -49,6 +52,7 @@ struct MarlinLink::Impl {
     std::string failure_detail;
     std::optional<Clock::time_point> failure_time;
     bool seen_start = false;
+    FeedLedger ledger;
     std::function<void()> fault_to_state;
 
     std::function<void(const TemperatureReport&)> temperature_cb;
@@ -89,10 +93,22 @@ struct MarlinLink::Impl {
             failure_detail.clear();
             failure_time.reset();
             seen_start = false;
+            ledger.firmware_started();  // opening the port resets the board
         }
+        feed_lines.clear();
+        cold_extrusion_refused = false;
         MarlinProtocol::Hooks hooks;
         hooks.write = [this](std::string_view bytes) { write(std::string(bytes)); };
         hooks.acked = [this](std::int64_t line) {
+            if (!feed_lines.empty() && feed_lines.front().first <= line) {
+                std::lock_guard lock(mu);
+                while (!feed_lines.empty() && feed_lines.front().first <= line) {
+                    const auto& [number, command] = feed_lines.front();
+                    ledger.taken(command, !(cold_extrusion_refused && number == line));
+                    feed_lines.pop_front();
+                }
+            }
+            cold_extrusion_refused = false;
             while (!requests.empty() && requests.front().last_line <= line) {
                 requests.front().done.set_value({});
                 requests.pop_front();
@@ -128,6 +144,10 @@ struct MarlinLink::Impl {
             case ReplyKind::echo:
                 if (r.text.find("Unknown command") != std::string::npos)
                     spdlog::warn("extruder.unknown_command {}", r.text);
+                if (r.text.find("cold extrusion prevented") != std::string::npos) {
+                    spdlog::warn("extruder.cold_extrusion_prevented {}", r.text);
+                    cold_extrusion_refused = true;
+                }
                 break;
             default: break;
         }
@@ -144,6 +164,7 @@ struct MarlinLink::Impl {
             failure_time = Clock::now();
             stats = proto->stats();
         }
+        feed_lines.clear();  // never acknowledged: not charged
         if (fault_to_state) fault_to_state();  // before the requests learn of it
         fail_requests(f, detail);
         // Let queued bytes (the M112 itself) reach the wire before the port closes.
@@ -236,7 +257,11 @@ struct MarlinLink::Impl {
                 proto->begin_session(0, now);
                 last = 0;
             }
-            for (const auto& l : lines) last = proto->enqueue(l, now);
+            for (const auto& l : lines) {
+                last = proto->enqueue(l, now);
+                std::string command = strip_comment(l);
+                if (FeedLedger::counts(command)) feed_lines.emplace_back(last, std::move(command));
+            }
             if (proto->failed()) {
                 p.set_value({proto->failure(), failure_detail});
                 return fut;
@@ -401,6 +426,10 @@ bool MarlinLink::emergency_parser() const {
     std::lock_guard lock(impl_->mu);
     const auto it = impl_->caps.find("EMERGENCY_PARSER");
     return it != impl_->caps.end() && it->second;
+}
+FeedTotals MarlinLink::fed() const {
+    std::lock_guard lock(impl_->mu);
+    return impl_->ledger.totals();
 }
 ProtocolStats MarlinLink::stats() const {
     std::lock_guard lock(impl_->mu);

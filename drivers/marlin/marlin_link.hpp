@@ -10,6 +10,7 @@
 //   to `error`; clear() then configure() + activate() reconnect.
 
 #include "drivers/device_state.hpp"
+#include "drivers/marlin/feed_ledger.hpp"
 #include "drivers/marlin/marlin_protocol.hpp"
 #include "drivers/marlin/serial_settings.hpp"
 
@@ -81,6 +82,8 @@ class MarlinLink {
     // a heat-up and emergency_stop() is obeyed only after it (docs/marlin-link.md).
     bool emergency_parser() const;
     ProtocolStats stats() const;
+    // Filament each extruder took over the link's life (every session), from acknowledged lines.
+    FeedTotals fed() const;
     LinkFailure fault() const;
     std::string fault_detail() const;
     // When the link failed (a firmware reset: when its `start` came); empty while it has not.

@@ -424,3 +424,58 @@ TEST_F(MarlinLinkTest, BadLinesAreRejectedBeforeAnythingIsSent) {
     EXPECT_THROW(link_.submit({"M112"}), LineError);
     EXPECT_TRUE(executed_job().empty());
 }
+
+// Filament per extruder as the board took it, through resends, lost oks and a reconnect: the
+// link's ledger against a sum of the E words the mock executed, counted here on their own.
+TEST_F(MarlinLinkTest, TheFeedLedgerChargesWhatTheBoardRanToEachExtruder) {
+    MarlinLinkConfig lc;
+    lc.protocol.ok_timeout = Seconds(0.1);
+    lc.protocol.motion_timeout = Seconds(0.3);  // the lost ok of a move: probed soon
+    lc.protocol.probe_settle = Seconds(0.05);
+    start({.time_scale = 50, .min_extrude_temp_c = 0}, lc);
+    std::vector<std::string> job{"M83"};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> e(-1.0, 4.0);
+    for (int i = 0; i < 300; ++i) {
+        if (i % 25 == 0) job.push_back(i % 50 == 0 ? "T1" : "T0");
+        char l[48];
+        std::snprintf(l, sizeof l, "G1 E%.5f F3000", e(rng));
+        job.push_back(l);
+    }
+    for (std::int64_t k : {40, 90, 150, 220}) mock_->corrupt_line(k);
+    mock_->swallow_ok(60);
+    mock_->delay_ok(120, 0.3);
+    mock_->drop_line(180);
+    const CommandOutcome out = finish(link_.submit(job), 60s);
+    ASSERT_TRUE(out.ok()) << to_string(out.failure) << " " << out.detail;
+
+    const auto ran = [&] {
+        std::array<double, 2> by_tool{};
+        int tool = 0;
+        for (const auto& c : mock_->executed()) {
+            if (c.text == "T0" || c.text == "T1") tool = c.text[1] - '0';
+            if (c.text.rfind("G1 E", 0) == 0) by_tool[static_cast<std::size_t>(tool)] += std::stod(c.text.substr(4));
+        }
+        return by_tool;
+    };
+    const auto board = ran();
+    EXPECT_NEAR(link_.fed().of(0), board[0], 1e-9);
+    EXPECT_NEAR(link_.fed().of(1), board[1], 1e-9);
+    EXPECT_GT(board[1], 100.0);
+
+    // A reconnect reboots the board (absolute E on T0); the totals carry on.
+    link_.deactivate();
+    link_.activate();
+    ASSERT_TRUE(finish(link_.submit({"T1", "G1 E2.5 F3000", "G1 E3 F3000"})).ok());
+    EXPECT_NEAR(link_.fed().of(1), board[1] + 3.0, 1e-9);
+}
+
+// Marlin drops the E of a move on a cold hotend and still answers ok: nothing was fed.
+TEST_F(MarlinLinkTest, AColdExtrusionRefusalIsNotCharged) {
+    start({.time_scale = 50});  // hotends at room temperature, PREVENT_COLD_EXTRUSION at 170
+    ASSERT_TRUE(finish(link_.submit({"M83", "T1", "G1 E5 F3000", "G1 E5 F3000"})).ok());
+    EXPECT_EQ(mock_->cold_extrusion_refusals(), 2u);
+    EXPECT_EQ(link_.fed().of(1), 0.0);
+    ASSERT_TRUE(finish(link_.submit({"M302 P1", "G1 E5 F3000"})).ok());  // cold extrusion allowed
+    EXPECT_NEAR(link_.fed().of(1), 5.0, 1e-9);
+}
