@@ -1,7 +1,8 @@
 #pragma once
 // Events the service publishes to subscribed clients as JSON-RPC notifications (no id).
 // Topics: a job id for that job's events, "cell" for cell status, "log" for log lines, "queue"
-// for the print queue and the bed; a client subscribed to "*" gets every topic.
+// for the print queue and the bed, "history" for the history's new records; a client subscribed
+// to "*" gets every topic.
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@ inline constexpr const char* job_progress = "notify.job_progress";  // latest on
 inline constexpr const char* cell_status = "notify.cell_status";    // latest only, rate-limited
 inline constexpr const char* log = "notify.log";                    // in order, immediately
 inline constexpr const char* queue = "notify.queue";                // in order, immediately
+inline constexpr const char* history = "notify.history";            // in order, immediately
 }  // namespace notify
 
 namespace topic {
@@ -22,6 +24,7 @@ inline constexpr const char* all = "*";
 inline constexpr const char* cell = "cell";
 inline constexpr const char* log = "log";
 inline constexpr const char* queue = "queue";
+inline constexpr const char* history = "history";
 }  // namespace topic
 
 enum class Delivery {
@@ -34,7 +37,7 @@ enum class Delivery {
 };
 
 struct ApiEvent {
-    std::string topic;   // job id, "cell", "log", "queue"
+    std::string topic;   // job id, "cell", "log", "queue", "history"
     std::string method;  // notify.*
     nlohmann::json params = nlohmann::json::object();
     Delivery delivery = Delivery::every;

@@ -12,9 +12,12 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include <pwd.h>
 #include <sys/socket.h>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <vector>
 
 namespace fibrecell::api {
@@ -25,11 +28,18 @@ using asio::ip::tcp;
 
 namespace {
 
-std::string unix_peer(int fd) {
+// The connecting process, for logs, and its user's name, for records.
+std::pair<std::string, std::string> unix_peer(int fd) {
     ucred cred{};
     socklen_t len = sizeof cred;
-    if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0) return "unix";
-    return "unix uid=" + std::to_string(cred.uid) + " pid=" + std::to_string(cred.pid);
+    if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0) return {"unix", "unix"};
+    std::string user = "uid " + std::to_string(cred.uid);
+    passwd pw{};
+    passwd* found = nullptr;
+    std::array<char, 4096> buf{};
+    if (::getpwuid_r(cred.uid, &pw, buf.data(), buf.size(), &found) == 0 && found)
+        user = found->pw_name;
+    return {"unix uid=" + std::to_string(cred.uid) + " pid=" + std::to_string(cred.pid), user};
 }
 
 std::vector<std::shared_ptr<ClientSession>> live_sessions(const ServerCore& core) {
@@ -83,12 +93,13 @@ void make_room(ServerCore& core, const std::shared_ptr<ClientSession>& victim, c
 // the socket (its file permissions, the token on TCP) gets its control call answered whatever the
 // other connections do (docs/socket-api.md, "Connections").
 void admit(const std::shared_ptr<ServerCore>& core, ClientSession::Socket socket,
-           Transport transport, std::string peer) {
+           Transport transport, std::string peer, std::string user) {
     const std::uint64_t id = core->next_client++;
     core->counters.connections++;
     core->counters.clients++;
     auto session =
-        std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer));
+        std::make_shared<ClientSession>(core, std::move(socket), id, transport, std::move(peer),
+                                        std::move(user));
     core->sessions[id] = session;
     auto open = open_sessions(*core);
     if (session->unauthenticated_tcp()) {
@@ -155,10 +166,10 @@ void accept_unix(const std::shared_ptr<ServerCore>& core) {
                 });
                 return;
             }
-            std::string peer = unix_peer(socket.native_handle());
+            auto [peer, user] = unix_peer(socket.native_handle());
             ClientSession::Socket generic(core->io, asio::generic::stream_protocol(local_stream()),
                                           socket.release());
-            admit(core, std::move(generic), Transport::unix_socket, std::move(peer));
+            admit(core, std::move(generic), Transport::unix_socket, std::move(peer), std::move(user));
             accept_unix(core);
         }));
 }
@@ -181,7 +192,8 @@ void accept_tcp(const std::shared_ptr<ServerCore>& core) {
                 "tcp " + remote.address().to_string() + ":" + std::to_string(remote.port());
             const auto protocol = asio::generic::stream_protocol(remote.protocol());
             ClientSession::Socket generic(core->io, protocol, socket.release());
-            admit(core, std::move(generic), Transport::tcp, std::move(peer));
+            admit(core, std::move(generic), Transport::tcp, std::move(peer),
+                  "tcp " + remote.address().to_string());
             accept_tcp(core);
         }));
 }
@@ -343,17 +355,17 @@ void ApiServer::update_limits(const ApiConfig& config) {
     });
 }
 
-local_stream::socket ApiServer::open_bridge(std::string peer) {
+local_stream::socket ApiServer::open_bridge(std::string peer, std::string user) {
     const auto& core = impl_->core;
     local_stream::socket ours(core->io);
     local_stream::socket theirs(core->io);
     asio::local::connect_pair(ours, theirs);
-    asio::post(core->strand, [core, peer = std::move(peer),
+    asio::post(core->strand, [core, peer = std::move(peer), user = std::move(user),
                               sock = std::make_shared<local_stream::socket>(std::move(theirs))] {
         if (core->stopped) return;  // closing `sock` here: the caller's end reads EOF
         ClientSession::Socket generic(core->io, asio::generic::stream_protocol(local_stream()),
                                       sock->release());
-        admit(core, std::move(generic), Transport::websocket, peer);
+        admit(core, std::move(generic), Transport::websocket, peer, user);
     });
     return ours;
 }

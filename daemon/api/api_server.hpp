@@ -89,9 +89,10 @@ class ApiServer {
 
     // A connection another listener accepted and authenticated (the dashboard's WebSocket,
     // daemon/http): returns our end of a local socket pair whose other end is served like any
-    // client (same methods, limits and events), newline-delimited. `peer` names it in logs.
+    // client (same methods, limits and events), newline-delimited. `peer` names it in logs,
+    // `user` in records (CallContext::user).
     // Thread-safe; after stop() the returned socket reads EOF at once.
-    boost::asio::local::stream_protocol::socket open_bridge(std::string peer);
+    boost::asio::local::stream_protocol::socket open_bridge(std::string peer, std::string user);
 
     std::uint16_t tcp_port() const;  // the bound TCP port (0 when TCP is off)
     const std::string& socket_path() const;

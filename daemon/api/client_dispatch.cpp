@@ -139,7 +139,7 @@ void ClientSession::dispatch(nlohmann::json&& element, const std::shared_ptr<Pen
             responder.error(errc::method_not_found, "method not found: " + request.method);
             return;
         }
-        const CallContext ctx{request.method, id_, transport_, peer_, request.notification};
+        const CallContext ctx{request.method, id_, transport_, peer_, user_, request.notification};
         (*handler)(request.params, ctx, responder);
     } catch (const ApiError& e) {
         responder.error(e);

@@ -23,12 +23,13 @@ std::chrono::nanoseconds interval_of(double rate_hz) {
 }  // namespace
 
 ClientSession::ClientSession(std::shared_ptr<ServerCore> core, Socket socket, std::uint64_t id,
-                             Transport transport, std::string peer)
+                             Transport transport, std::string peer, std::string user)
     : core_(std::move(core)),
       socket_(std::move(socket)),
       id_(id),
       transport_(transport),
       peer_(std::move(peer)),
+      user_(std::move(user)),
       // The socket's mode or the dashboard's login decided already; TCP calls server.auth.
       authenticated_(transport != Transport::tcp),
       gate_(core_->strand, interval_of(core_->config.progress_rate_hz),

@@ -31,7 +31,7 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     using Line = std::shared_ptr<const std::string>;
 
     ClientSession(std::shared_ptr<ServerCore> core, Socket socket, std::uint64_t id,
-                  Transport transport, std::string peer);
+                  Transport transport, std::string peer, std::string user);
     ~ClientSession();
 
     void start();
@@ -96,6 +96,7 @@ class ClientSession : public std::enable_shared_from_this<ClientSession> {
     const std::uint64_t id_;
     const Transport transport_;
     const std::string peer_;
+    const std::string user_;  // CallContext::user
 
     std::array<char, 64 * 1024> chunk_{};
     std::string inbuf_;

@@ -212,7 +212,8 @@ void HttpConnection::upgrade(Request&& req) {
     ws->async_accept(req, [self, ws, max_line, session = session_id(req)](const boost::system::error_code& ec) {
         if (ec) return;
         spdlog::info("http.websocket peer={}", self->peer_);
-        auto api = self->core_->api.open_bridge("websocket " + self->peer_);
+        auto api = self->core_->api.open_bridge("websocket " + self->peer_,
+                                                "dashboard " + self->address_);
         auto session_valid = [core = self->core_, id = session] {
             const std::lock_guard lock(core->mutex);
             return core->sessions.valid(id, Clock::now());

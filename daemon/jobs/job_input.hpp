@@ -19,6 +19,7 @@ struct JobInput {
     std::string job_yaml;                                    // the job file's text
     std::vector<std::pair<std::string, std::string>> files;  // relative name -> bytes
     bool start_when_planned = false;                         // `fibrecell submit --start`
+    std::string submitted_by;                                // api::CallContext::user
 };
 
 // A submission that cannot be stored or planned; the message names the file or key.

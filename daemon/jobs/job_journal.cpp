@@ -65,6 +65,8 @@ JournalSummary read_journal(const std::filesystem::path& path) {
             const std::int64_t seq = j["seq"].get<std::int64_t>();
             std::int64_t& high = phase == "sending" ? s.last_sent : s.last_confirmed;
             high = std::max(high, seq);
+            if (phase == "confirmed" && j.value("kind", "") == "layer_end")
+                s.layers_done = std::max(s.layers_done, j.value("layer", -1) + 1);
         } else if (phase == "fed") {
             if (!j.contains("seq") || !j["seq"].is_number_integer() ||
                 j["seq"].get<long long>() < 1 || !j.contains("mm") || !j["mm"].is_number() ||
@@ -72,6 +74,14 @@ JournalSummary read_journal(const std::filesystem::path& path) {
                 throw JournalError(path.string() + ": line " + std::to_string(line) +
                                    ": a fed record needs a positive integer seq and mm >= 0");
             s.fed = JournalFed{j["seq"].get<std::int64_t>(), j["mm"].get<double>()};
+        } else if (phase == "used") {
+            const auto mm = [&](const char* key) {
+                if (!j.contains(key) || !j[key].is_number())
+                    throw JournalError(path.string() + ": line " + std::to_string(line) +
+                                       ": a used record needs pla_mm and fibre_mm");
+                return j[key].get<double>();
+            };
+            s.used = JournalUsed{mm("pla_mm"), mm("fibre_mm")};
         } else if (phase != "resume") {
             throw JournalError(path.string() + ": line " + std::to_string(line) +
                                ": unknown phase '" + phase + "'");
@@ -181,6 +191,16 @@ void JobJournal::fed(const JournalFed& f) {
     wake_.notify_one();
 }
 
+void JobJournal::used(const JournalUsed& u) {
+    {
+        std::lock_guard lock(mu_);
+        queue(nlohmann::json{{"phase", "used"}, {"pla_mm", u.pla_mm}, {"fibre_mm", u.fibre_mm}}.dump());
+        summary_.used = u;
+        ++summary_.records;
+    }
+    wake_.notify_one();
+}
+
 void JobJournal::flush() {
     std::unique_lock lock(mu_);
     const std::uint64_t target = queued_count_;
@@ -207,6 +227,11 @@ std::int64_t JobJournal::last_confirmed() const {
 std::optional<JournalFed> JobJournal::last_fed() const {
     std::lock_guard lock(mu_);
     return summary_.fed;
+}
+
+std::optional<JournalUsed> JobJournal::last_used() const {
+    std::lock_guard lock(mu_);
+    return summary_.used;
 }
 
 }  // namespace fibrecell::daemon::jobs

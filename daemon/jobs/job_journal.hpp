@@ -6,12 +6,15 @@
 //   {"seq":57,"kind":"cut","layer":3,"path":2,"phase":"confirmed"}  the board acknowledged them
 //   {"phase":"resume","first_event":41}                             a resumed run re-enters here
 //   {"seq":58,"phase":"fed","mm":63.0}  fibre the board took along the fibre path of fibre_start 58
+//   {"phase":"used","pla_mm":812.4,"fibre_mm":1520.0}  filament the board took for the job, all runs
 //
 // The service writes `sending` BEFORE it sends an extruder action, so after a crash an event that
 // may have reached the board is known; `confirmed` after the sync engine's on_event_done. The last
 // confirmed event (the highest, over all runs) is where resume_point() starts from. `fed` records
 // follow a fibre path's feed as the board answers it (the print runner writes the latest every
 // poll, off the sync engine's thread); the last one says where a re-entry lays the rest from.
+// `used` records follow the extruder link's feed ledger the same way (every poll it changed, and
+// at the print's end): the last one is what the job took from the spools (docs/history.md).
 
 #include "drivers/abb/program/print_program.hpp"
 
@@ -45,10 +48,20 @@ struct JournalFed {
     double mm = 0;
 };
 
+// Filament the board took for the job over all its runs [mm]: PLA filament on the PLA hotend,
+// fibre on the fibre hotend, as the extruder link's ledger counted them.
+struct JournalUsed {
+    double pla_mm = 0;
+    double fibre_mm = 0;
+    bool operator==(const JournalUsed&) const = default;
+};
+
 struct JournalSummary {
     std::int64_t last_sent = 0;       // highest `sending` sequence (0: none)
     std::int64_t last_confirmed = 0;  // highest `confirmed` sequence (0: none)
     std::optional<JournalFed> fed;    // the last `fed` record
+    std::optional<JournalUsed> used;  // the last `used` record
+    int layers_done = 0;              // 1 + the highest layer whose layer_end was confirmed
     std::size_t records = 0;          // complete lines read
     bool torn_tail = false;           // the last line was cut short by a crash (ignored)
 };
@@ -82,6 +95,7 @@ class JobJournal {
     // Queued; a failed write is reported by take_failure(). Thread-safe.
     void confirmed(const JournalEvent& e);
     void fed(const JournalFed& f);
+    void used(const JournalUsed& u);
 
     // Returns once everything queued so far is on the disk (or failed).
     void flush();
@@ -91,6 +105,7 @@ class JobJournal {
     std::int64_t last_sent() const;
     std::int64_t last_confirmed() const;
     std::optional<JournalFed> last_fed() const;
+    std::optional<JournalUsed> last_used() const;
 
   private:
     void queue(std::string line);

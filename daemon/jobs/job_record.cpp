@@ -26,7 +26,12 @@ nlohmann::json to_json(const JobRecord& r) {
             {"plan_attempts", r.plan_attempts},
             {"start_when_planned", r.start_when_planned},
             {"last_confirmed_event", r.last_confirmed_event},
-            {"journal_lost", r.journal_lost}};
+            {"journal_lost", r.journal_lost},
+            {"submitted_by", r.submitted_by},
+            {"started_by", r.started_by},
+            {"planned_at", r.planned_at},
+            {"started_at", r.started_at},
+            {"ended_at", r.ended_at}};
 }
 
 JobRecord record_from_json(const nlohmann::json& j) {
@@ -51,6 +56,10 @@ JobRecord record_from_json(const nlohmann::json& j) {
     r.start_when_planned = field<bool>(j, "start_when_planned");
     r.last_confirmed_event = field<std::int64_t>(j, "last_confirmed_event");
     r.journal_lost = j.contains("journal_lost") && field<bool>(j, "journal_lost");
+    for (auto [key, value] : {std::pair{"submitted_by", &r.submitted_by}, {"started_by", &r.started_by},
+                              {"planned_at", &r.planned_at}, {"started_at", &r.started_at},
+                              {"ended_at", &r.ended_at}})
+        if (j.contains(key)) *value = field<std::string>(j, key);
     return r;
 }
 

@@ -2,8 +2,11 @@
 // What the service knows about one job, and its state.json (format fibrecell.job/1):
 //   {"format": "fibrecell.job/1", "id": 12, "name": "loop", "state": "printing", "reason": "",
 //    "submitted_at": "2026-12-01T16:30:00Z", "updated_at": "...", "plan_attempts": 1,
-//    "start_when_planned": false, "last_confirmed_event": 0, "journal_lost": false}
-// (journal_lost may be absent: state files written before it read as false)
+//    "start_when_planned": false, "last_confirmed_event": 0, "journal_lost": false,
+//    "submitted_by": "alice", "started_by": "dashboard 10.0.0.7", "planned_at": "...",
+//    "started_at": "...", "ended_at": "..."}
+// (journal_lost and the *_by / *_at after it may be absent: state files written before them read
+// as false and "")
 
 #include "daemon/jobs/job_state.hpp"
 
@@ -33,6 +36,8 @@ struct JobRecord {
     bool start_when_planned = false;        // `fibrecell submit --start`
     std::int64_t last_confirmed_event = 0;  // from the journal; 0: nothing printed
     bool journal_lost = false;  // it had printed and its journal was missing: resume needs a word
+    std::string submitted_by, started_by;     // api::CallContext::user; "" when not known
+    std::string planned_at, started_at, ended_at;  // UTC, ISO 8601; "" until it happens
     JobProgress progress;
 };
 

@@ -100,12 +100,26 @@ void JobStore::persist(const JobRecord& r) const {
     config::write_file_durably(job_dir(r.id) / "state.json", to_json(r).dump(2) + "\n");
 }
 
+namespace {
+
+// The record's times after a change from `from`: updated now; planned, first printing and ended
+// (an interruption too) when it just did.
+void stamp(JobRecord& r, JobState from) {
+    const std::string now = config::utc_now();
+    r.updated_at = now;
+    if (r.state == JobState::planned && from == JobState::planning) r.planned_at = now;
+    if (r.state == JobState::printing && r.started_at.empty()) r.started_at = now;
+    if (is_ended(r.state) || r.state == JobState::interrupted) r.ended_at = now;
+}
+
+}  // namespace
+
 JobRecord JobStore::change(Entry& e, JobState to, const std::string& reason) {
     const JobRecord before = e.record;
     JobRecord& r = e.record;
     r.state = to;
     if (!reason.empty() || !keeps_its_reason(to)) r.reason = reason;
-    r.updated_at = config::utc_now();
+    stamp(r, before.state);
     if (e.journal) r.last_confirmed_event = e.journal->last_confirmed();
     try {
         persist(r);
@@ -265,6 +279,7 @@ JobRecord JobStore::submit(const JobInput& input) {
         r.state = JobState::planning;
         r.submitted_at = r.updated_at = config::utc_now();
         r.start_when_planned = input.start_when_planned;
+        r.submitted_by = input.submitted_by;
         try {
             config::write_file_durably(incoming / "state.json", to_json(r).dump(2) + "\n");
             fs::create_directories(incoming / "plan");
@@ -315,7 +330,7 @@ void JobStore::check_cell_free(std::int64_t id) const {
     }
 }
 
-JobRecord JobStore::request(std::int64_t id, JobAction action) {
+JobRecord JobStore::request(std::int64_t id, JobAction action, const std::string& by) {
     if (!is_user_action(action))
         throw std::logic_error(std::string(to_string(action)) + " is not a user action");
     JobRecord result;
@@ -353,7 +368,15 @@ JobRecord JobStore::request(std::int64_t id, JobAction action) {
             e.record.progress = {"queued", 0};
         }
         const JobState to = allowed_targets(e.record.state, action).front();
-        result = change(e, to, action == JobAction::abort ? "aborted by the operator" : "");
+        // A start, or the re-entry of an interrupted print, is someone's: the record keeps whose.
+        const std::string started_by = e.record.started_by;
+        if (to == JobState::starting && !by.empty()) e.record.started_by = by;
+        try {
+            result = change(e, to, action == JobAction::abort ? "aborted by the operator" : "");
+        } catch (...) {
+            e.record.started_by = started_by;
+            throw;
+        }
         if (is_ended(to)) prune_ended();
     }
     notify({result});
@@ -384,10 +407,11 @@ std::optional<JobRecord> JobStore::apply(std::int64_t id, JobAction event,
             // takes it: the service goes on with it in memory and says so. The disk keeps the
             // last state it took, which a restart reads back as interrupted.
             spdlog::critical("job.state_not_saved {}", x.what());
+            const JobState from = e.record.state;  // change() put it back
             e.record.state = to;
             e.record.reason = (reason.empty() ? std::string(to_string(to)) : reason) +
                               "; not saved: " + x.what();
-            e.record.updated_at = config::utc_now();
+            stamp(e.record, from);
             result = e.record;
         }
         if (event == JobAction::plan_done || event == JobAction::plan_failed)
@@ -463,6 +487,16 @@ void JobStore::remove_folder(std::int64_t id) {
     std::error_code ec;
     fs::remove_all(gone, ec);
     jobs_.erase(id);
+}
+
+bool JobStore::remove_plan(std::int64_t id) {
+    std::lock_guard lock(mu_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end() || !is_ended(it->second.record.state)) return false;
+    std::error_code ec;
+    if (fs::remove_all(plan_dir(id), ec) == 0 || ec) return false;
+    spdlog::info("job.plan_pruned job {}", id);
+    return true;
 }
 
 void JobStore::prune_ended() {

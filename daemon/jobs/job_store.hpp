@@ -100,7 +100,8 @@ class JobStore {
     // refusal()'s message, or when another job holds the cell (start, resume), or for a replan of
     // a job whose print had started; JobNotFound. remove deletes the folder and returns the
     // record as it was; replan starts the job's planning afresh (no attempts, no reason).
-    JobRecord request(std::int64_t id, JobAction action);
+    // `by` (api::CallContext::user) is kept as the record's started_by for a start or re-entry.
+    JobRecord request(std::int64_t id, JobAction action, const std::string& by = {});
 
     // A service event (plan_done, faulted, ...). `reason` is kept for failed, aborted, paused and
     // interrupted. Returns nullopt (nothing changed) when the table does not allow it from the
@@ -129,6 +130,10 @@ class JobStore {
     // (its part is on the bed; how far it got is known only to the last layer state.json saw):
     // the operator's explicit word lets it resume after state.json's last confirmed event.
     void accept_lost_journal(std::int64_t id);
+
+    // Deletes the plan directory of a job that ended (completed, aborted, failed): never of one
+    // planned, queued, printing or interrupted. True when a plan was removed.
+    bool remove_plan(std::int64_t id);
 
     std::filesystem::path job_dir(std::int64_t id) const;
     std::filesystem::path plan_dir(std::int64_t id) const { return job_dir(id) / "plan"; }

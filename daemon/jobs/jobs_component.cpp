@@ -58,6 +58,7 @@ JobInput submitted_job(const json& params, const CallContext& ctx) {
     JobInput input;
     input.job_yaml = p.string("job_yaml");
     input.start_when_planned = p.boolean_or("start", false);
+    input.submitted_by = ctx.user;
     if (p.has("files")) {
         const json& files = p.object("files");
         for (const auto& [name, data] : files.items()) {
@@ -228,6 +229,10 @@ json JobsComponent::job_json(const JobRecord& r) const {
               {"last_confirmed_event", r.last_confirmed_event},
               {"dir", store_->job_dir(r.id).string()}};
     if (!r.reason.empty()) j["reason"] = r.reason;
+    for (const auto& [key, value] : {std::pair{"submitted_by", &r.submitted_by},
+                                     {"started_by", &r.started_by}, {"planned_at", &r.planned_at},
+                                     {"started_at", &r.started_at}, {"ended_at", &r.ended_at}})
+        if (!value->empty()) j[key] = *value;
     if (r.state == JobState::planning)
         j["planning"] = {{"stage", r.progress.stage.empty() ? "queued" : r.progress.stage},
                          {"fraction", r.progress.fraction}};

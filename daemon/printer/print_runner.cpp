@@ -49,6 +49,9 @@ struct PrintRunner::Active {
     std::atomic<int> layer{-1};
     int layer_saved = -1;  // the layer of the last confirm_progress (the runner's thread only)
     jobs::JournalFed fed_saved;  // the last `fed` record written (the runner's thread only)
+    // The job's filament: what earlier runs used, plus the link's ledger since this run began.
+    jobs::JournalUsed used_before, used_saved;
+    drivers::marlin::FeedTotals board_fed_at_start;
     sync::SyncStatus sync;  // as of the last poll
 };
 
@@ -63,6 +66,8 @@ PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const Cell
 }
 
 PrintRunner::~PrintRunner() { stop(); }
+
+void PrintRunner::on_finished(std::function<void(std::int64_t)> f) { on_finished_ = std::move(f); }
 
 void PrintRunner::on_progress(std::function<void(std::int64_t, const json&)> f) {
     on_progress_ = std::move(f);
@@ -196,6 +201,11 @@ void PrintRunner::run() {
     // Waited for (briefly): the process may end before the lines are written.
     if (auto off = send_heaters_off("the service is stopping"); off.valid())
         off.wait_for(std::chrono::seconds(2));
+    if (active && active->journal) {
+        // Answered in order: what the board took before the M104s is in the ledger now.
+        save_used(*active);
+        active->journal->flush();
+    }
 }
 
 namespace {
@@ -399,6 +409,8 @@ void PrintRunner::start_job(std::int64_t id) {
     a->id = id;
     const bool resuming = record.last_confirmed_event > 0;
     a->journal = store_.journal(id);
+    a->used_before = a->used_saved = a->journal->last_used().value_or(jobs::JournalUsed{});
+    a->board_fed_at_start = devices_.board().fed();
     std::optional<print::FibreFed> fed;
     if (const auto f = a->journal->last_fed()) fed = print::FibreFed{f->sequence, f->mm};
     try {
@@ -502,6 +514,7 @@ void PrintRunner::poll_active() {
         }
     }
     save_fibre_fed(a, st.sync.metering);
+    save_used(a);
     if (const auto failed = a.journal->take_failure())
         fault(a, "the job's journal cannot be written: " + *failed);
     lock.lock();
@@ -593,6 +606,22 @@ void PrintRunner::save_fibre_fed(Active& a, const sync::MeteringStatus& m) {
     a.fed_saved = {m.sequence, m.e_fed_mm};
 }
 
+// The filament the job has taken so far, journaled when it changed (queued: the next poll sees a
+// failed write). The board's count, never the plan's.
+jobs::JournalUsed PrintRunner::save_used(Active& a) {
+    const drivers::marlin::FeedTotals now = devices_.board().fed();
+    const auto& x = cell_.extruder;
+    const auto since = [&](int tool) { return now.of(tool) - a.board_fed_at_start.of(tool); };
+    const jobs::JournalUsed used{a.used_before.pla_mm + since(x.pla_tool),
+                                 a.used_before.fibre_mm + since(x.ccf_tool)};
+    if (std::abs(used.pla_mm - a.used_saved.pla_mm) > 1e-6 ||
+        std::abs(used.fibre_mm - a.used_saved.fibre_mm) > 1e-6) {
+        a.journal->used(used);
+        a.used_saved = used;
+    }
+    return used;
+}
+
 // The print ended (completed or aborted): its figures go to result.json beside state.json, and
 // the heaters go off (now, or after the cell's hold).
 void PrintRunner::finish(const std::string& outcome, const std::string& outcome_reason) {
@@ -604,8 +633,9 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
     }
     if (!a) return;
     devices_.set_print(nullptr);
-    if (a->journal) a->journal->flush();  // the journal is whole before the job's end is saved
     const print::PrintStatus st = a->session ? a->session->poll() : print::PrintStatus{};
+    const jobs::JournalUsed used = a->journal ? save_used(*a) : a->used_before;
+    if (a->journal) a->journal->flush();  // the journal is whole before the job's end is saved
     const double elapsed = seconds(Clock::now() - a->started);
     json result = {{"elapsed_s", elapsed},
                    {"robot_time_s", elapsed * devices_.time_scale()},
@@ -614,6 +644,7 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
                    {"events", a->plan.program.events.size()},
                    {"first_event", a->plan.first_event}};
     if (!outcome_reason.empty()) result["reason"] = outcome_reason;
+    result["used"] = {{"pla_mm", used.pla_mm}, {"fibre_mm", used.fibre_mm}};
     result.update(result_sync_json(st.sync));
     try {
         config::write_file_durably(store_.job_dir(a->id) / "result.json", result.dump(2) + "\n");
@@ -622,6 +653,8 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
     }
     spdlog::info("print.finished job {} {}", a->id, result.dump());
     a->session.reset();
+    if (a->journal) a->journal->flush();
+    if (on_finished_) on_finished_(a->id);
 }
 
 }  // namespace fibrecell::daemon::printer

@@ -68,6 +68,9 @@ class PrintRunner {
 
     // Progress of the job printing (about every poll period; the API rate-limits).
     void on_progress(std::function<void(std::int64_t id, const nlohmann::json& print)> f);
+    // A print left the cell and its figures are written (result.json, the journal); before the
+    // first start.
+    void on_finished(std::function<void(std::int64_t id)> f);
 
     // The job was moved to starting by the store (job.start or job.resume of an interrupted
     // job); the runner takes it from there.
@@ -110,6 +113,7 @@ class PrintRunner {
     void reconnect_board(Active& a);
     void cut_left_fibre(std::int64_t id);
     void save_fibre_fed(Active& a, const sync::MeteringStatus& m);
+    jobs::JournalUsed save_used(Active& a);
     void poll_active();
     // `outcome`: how the print ended, for the heaters' log ("completed", "aborted by the
     // operator"); `reason`: result.json's reason (empty: none).
@@ -124,6 +128,7 @@ class PrintRunner {
     CellConfig cell_;
     PrintRunnerOptions options_;
     std::function<void(std::int64_t, const nlohmann::json&)> on_progress_;
+    std::function<void(std::int64_t)> on_finished_;
 
     mutable std::mutex mu_;
     std::condition_variable cv_;

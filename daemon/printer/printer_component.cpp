@@ -51,6 +51,10 @@ PrinterComponent::~PrinterComponent() = default;
 
 void PrinterComponent::add_start_gate(StartGate gate) { gates_.push_back(std::move(gate)); }
 
+void PrinterComponent::on_print_finished(std::function<void(std::int64_t)> f) {
+    finished_.push_back(std::move(f));
+}
+
 std::optional<std::string> PrinterComponent::held_at_gate(const JobRecord& r) const {
     for (const StartGate& gate : gates_)
         if (auto reason = gate(r)) return reason;
@@ -59,7 +63,7 @@ std::optional<std::string> PrinterComponent::held_at_gate(const JobRecord& r) co
 
 void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
     endpoints.method("job.start", [this](const json& params, const CallContext& ctx) {
-        return jobs_.job_json(start_print(jobs::job_id_param(params, ctx)));
+        return jobs_.job_json(start_print(jobs::job_id_param(params, ctx), ctx.user));
     });
 
     endpoints.control_method("job.pause", [this](const json& params, const CallContext& ctx) {
@@ -85,7 +89,8 @@ void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
             if (const auto reason = held_at_gate(before))
                 throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
         if (journal_lost) as_api([&] { jobs_.store().accept_lost_journal(id); });
-        const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::resume); });
+        const JobRecord r =
+            as_api([&] { return jobs_.store().request(id, JobAction::resume, ctx.user); });
         one.unlock();
         if (before.state == JobState::interrupted)
             runner_->start(id, nullptr);  // re-entry: a new run from the resume point
@@ -111,6 +116,9 @@ void PrinterComponent::register_endpoints(component::Endpoints& endpoints) {
 
 void PrinterComponent::start() {
     runner_ = std::make_unique<PrintRunner>(jobs_.store(), cell_.devices(), config_, options_);
+    runner_->on_finished([this](std::int64_t id) {
+        for (const auto& f : finished_) f(id);
+    });
     runner_->on_progress([this](std::int64_t id, const json& progress) {
         endpoints_.publish({.topic = std::to_string(id),
                             .method = api::notify::job_progress,
@@ -123,13 +131,13 @@ void PrinterComponent::stop() {
     if (runner_) runner_->stop();
 }
 
-JobRecord PrinterComponent::start_print(std::int64_t id) {
+JobRecord PrinterComponent::start_print(std::int64_t id, const std::string& by) {
     // The gates' answer and the start at once: a gate's ground (a clear bed) cannot change
     // between them.
     std::lock_guard one(start_mu_);
     if (const auto reason = held_at_gate(as_api([&] { return jobs_.store().get(id); })))
         throw ApiError::conflict("job " + std::to_string(id) + " cannot start: " + *reason);
-    const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::start); });
+    const JobRecord r = as_api([&] { return jobs_.store().request(id, JobAction::start, by); });
     runner_->start(id, nullptr);
     std::lock_guard lock(refused_mu_);
     start_refused_.erase(id);
@@ -141,7 +149,7 @@ void PrinterComponent::start_when_planned(const JobRecord& r) {
     try {
         // Started already (by the queue, or by hand, since its plan was done): nothing to do.
         if (jobs_.store().get(r.id).state != JobState::planned) return;
-        start_print(r.id);
+        start_print(r.id, r.submitted_by);  // the submitter asked for the start
     } catch (const std::exception& e) {
         {
             std::lock_guard lock(refused_mu_);

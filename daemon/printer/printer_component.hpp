@@ -12,6 +12,8 @@
 //                   moves.
 //   start_print     starts a planned job as job.start does (the gates first), for a component
 //                   that starts jobs of its own (the print queue).
+//   on_print_finished  a print left the cell (completed or aborted) and its figures are written
+//                   (result.json, the journal's last `used`): the history takes them from there.
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/component/component.hpp"
@@ -43,10 +45,13 @@ class PrinterComponent : public component::Component {
     ~PrinterComponent() override;
 
     void add_start_gate(StartGate gate);  // before start()
+    // On the runner's thread, after result.json; before start().
+    void on_print_finished(std::function<void(std::int64_t id)> f);
 
     // job.start: the gates, the store's start, then the runner. Throws api::ApiError (conflict
-    // with the gate's or the store's reason, not found).
-    jobs::JobRecord start_print(std::int64_t id);
+    // with the gate's or the store's reason, not found). `by`: who started it (the record's
+    // started_by).
+    jobs::JobRecord start_print(std::int64_t id, const std::string& by);
 
     void register_endpoints(component::Endpoints& endpoints) override;
     void start() override;
@@ -68,6 +73,7 @@ class PrinterComponent : public component::Component {
     PrintRunnerOptions options_;
     component::Endpoints endpoints_;
     std::vector<StartGate> gates_;
+    std::vector<std::function<void(std::int64_t)>> finished_;
     std::mutex start_mu_;  // a gate's answer and the start it allows, as one step
     // Jobs submitted with `start` whose start was refused once planned, and why: their view says
     // so (`start_refused`), so that a watching client need not wait for a start that will not come.

@@ -194,7 +194,7 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
                                          std::string(to_string(r.state)) + ", not planned");
             queue_started_ = next;
         }
-        printer_.start_print(next);
+        printer_.start_print(next, ctx.user);
         spdlog::info("queue.next {} started by {}", job_name(next), ctx.peer);
         std::lock_guard lock(mu_);
         return view();
@@ -426,7 +426,7 @@ void QueueComponent::start_next_if_due() {
         queue_started_ = next;
     }
     try {
-        printer_.start_print(next);
+        printer_.start_print(next, "queue");  // after_clear: the queue's own start
         spdlog::info("queue.started {}", job_name(next));
     } catch (const std::exception& e) {
         std::lock_guard lock(mu_);

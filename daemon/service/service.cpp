@@ -3,6 +3,7 @@
 #include "config/build_info.hpp"
 #include "config/logging.hpp"
 #include "daemon/devices/cell_component.hpp"
+#include "daemon/history/history_component.hpp"
 #include "daemon/jobs/jobs_component.hpp"
 #include "daemon/log/log_component.hpp"
 #include "daemon/printer/printer_component.hpp"
@@ -26,6 +27,7 @@ ServiceConfig load_service_config(const std::string& path) {
         c.jobs = jobs::load_jobs_config(root.section("jobs"));
         c.print = printer::load_print_options(root.section("print"));
         c.queue = queue::load_queue_config(root.section("queue"));
+        c.history = history::load_history_config(root.section("history"));
     });
     return c;
 }
@@ -56,6 +58,7 @@ Service::Service(boost::asio::io_context& io, ServiceConfig config)
     auto& jobs = add<jobs::JobsComponent>("jobs", config_.cell, config_.jobs);
     printer_ = &add<printer::PrinterComponent>("printer", jobs, cell, config_.cell, config_.print);
     add<queue::QueueComponent>("queue", jobs, *printer_, cell, config_.cell, config_.queue);
+    add<history::HistoryComponent>("history", jobs, *printer_, config_.cell, config_.history);
     add<logs::LogComponent>("log");
 }
 

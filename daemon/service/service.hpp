@@ -14,6 +14,7 @@
 #include "daemon/http/http_server.hpp"
 #include "daemon/jobs/jobs_config.hpp"
 #include "daemon/printer/print_runner.hpp"
+#include "daemon/history/history_config.hpp"
 #include "daemon/queue/queue_config.hpp"
 
 #include <boost/asio/io_context.hpp>
@@ -36,6 +37,7 @@ struct ServiceConfig {
     jobs::JobsConfig jobs;
     printer::PrintRunnerOptions print;
     queue::QueueConfig queue;
+    history::HistoryConfig history;
 };
 
 // The cell YAML with the service's sections (api:, jobs:, print:); throws config::ConfigError.

@@ -3,6 +3,7 @@
 #include "config/build_info.hpp"
 #include "config/logging.hpp"
 #include "tools/fibrecell/compare_command.hpp"
+#include "tools/fibrecell/history_command.hpp"
 #include "tools/fibrecell/plan_command.hpp"
 #include "tools/fibrecell/queue_commands.hpp"
 #include "tools/fibrecell/service_commands.hpp"
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
     fibrecell::tools::add_compare_command(app, exit_code);
     fibrecell::tools::add_service_commands(app, exit_code);
     fibrecell::tools::add_queue_commands(app, exit_code);
+    fibrecell::tools::add_history_command(app, exit_code);
     app.parse_complete_callback(
         [&] { fibrecell::config::setup_logging(verbose ? "info" : "warn"); });
     CLI11_PARSE(app, argc, argv);
