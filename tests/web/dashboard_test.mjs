@@ -3,8 +3,8 @@
 // its YAML and mesh, as `fibrecell submit` sends them), watch it plan, start it and pause it at once,
 // see the temperatures on the cell page, resume, see it complete with its result; a second browser
 // (its own login) sees the same job live, its progress moving and the robot on the layer; then two
-// more jobs are queued, reordered on the queue card and the bed cleared. Screenshots of each page go
-// to --out.
+// more jobs are queued, reordered on the queue card and the bed cleared; the history page shows the
+// first job and downloads the CSV. Screenshots of each page go to --out.
 // Exit 0 pass, 1 fail, 77 skip (no Chromium or puppeteer-core).
 //
 //   node dashboard_test.mjs --fibrecelld BIN --web-root DIR --job FILE --mesh FILE --out DIR
@@ -284,6 +284,32 @@ async function main() {
   await page.waitForFunction(() => document.querySelector("#bed-state").textContent === "bed clear");
   await shot(page, "jobs");
   step(`the bed held job ${id}'s part; jobs ${second} and ${third} queued, reordered, the bed cleared`);
+  // The history page: the completed job's record, who started it (the dashboard, by address),
+  // and the CSV as the browser downloads it, read back.
+  await page.goto(base + "#/history");
+  await page.waitForSelector(`#history-rows tr[data-record="${id}"]`);
+  const record = await page.$eval(`#history-rows tr[data-record="${id}"]`, (r) => r.textContent);
+  if (!record.includes("completed") || !record.includes("dashboard 127.0.0.1"))
+    fail(`job ${id}'s history row reads "${record}"`);
+  const downloads = join(dir, "downloads");
+  mkdirSync(downloads);
+  const cdp = await browser.target().createCDPSession();
+  await cdp.send("Browser.setDownloadBehavior", { behavior: "allow", downloadPath: downloads });
+  await page.click("#history-csv");
+  const csvFile = join(downloads, "fibrecell-history.csv");
+  for (let waited = 0; !existsSync(csvFile); waited += 50) {
+    if (waited > 10000) fail("the CSV was not downloaded within 10 s");
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  const csvRows = readFileSync(csvFile, "utf8").split("\r\n").filter((l) => l).map((l) => l.split(","));
+  const header = csvRows[0];
+  if (header[0] !== "id" || !header.includes("fibre_used_m") || !header.includes("pla_used_m"))
+    fail(`the CSV's header is ${csvRows[0]}`);
+  const mine = csvRows.find((r) => r[0] === String(id));
+  if (!mine || !(Number(mine[header.indexOf("fibre_used_m")]) > 0))
+    fail(`the CSV has no row of job ${id} with the fibre it used: ${JSON.stringify(csvRows)}`);
+  await shot(page, "history");
+  step(`the history shows job ${id}, started from the dashboard; its CSV downloaded and read back`);
   await page.goto(base + "#/log");
   await page.waitForFunction(() => document.querySelector("#log-lines").textContent.includes("job"));
   await shot(page, "log");

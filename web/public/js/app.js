@@ -1,10 +1,11 @@
 // The dashboard's shell: the login, the connection, the at-a-glance header and the pages
-// (#/cell, #/jobs, #/job/ID, #/log). Every page talks to fibrecelld through one Rpc.
+// (#/cell, #/jobs, #/job/ID, #/history, #/log). Every page talks to fibrecelld through one Rpc.
 import { Rpc } from "./rpc.js";
 import { CellHistory } from "./cell_history.js";
 import * as cellPage from "./cell.js";
 import * as jobsPage from "./jobs.js";
 import * as jobPage from "./job.js";
+import * as historyPage from "./history.js";
 import * as logPage from "./log.js";
 import { formatDuration, el } from "./ui.js";
 
@@ -70,7 +71,7 @@ rpc.on("notify.log", (line) => {
 function route() {
   routedSinceOpen = true;
   const [, name = "cell", arg] = location.hash.split("/");
-  const module = { cell: cellPage, jobs: jobsPage, job: jobPage, log: logPage }[name] || cellPage;
+  const module = { cell: cellPage, jobs: jobsPage, job: jobPage, history: historyPage, log: logPage }[name] || cellPage;
   for (const a of document.querySelectorAll("nav a"))
     a.classList.toggle("active", a.dataset.page === name || (name === "job" && a.dataset.page === "jobs"));
   if (current && current.module.leave) current.module.leave();
