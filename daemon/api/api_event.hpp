@@ -1,8 +1,8 @@
 #pragma once
 // Events the service publishes to subscribed clients as JSON-RPC notifications (no id).
 // Topics: a job id for that job's events, "cell" for cell status, "log" for log lines, "queue"
-// for the print queue and the bed, "history" for the history's new records; a client subscribed
-// to "*" gets every topic.
+// for the print queue and the bed, "history" for the history's new records, "spools" for the
+// spools; a client subscribed to "*" gets every topic.
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +17,7 @@ inline constexpr const char* cell_status = "notify.cell_status";    // latest on
 inline constexpr const char* log = "notify.log";                    // in order, immediately
 inline constexpr const char* queue = "notify.queue";                // in order, immediately
 inline constexpr const char* history = "notify.history";            // in order, immediately
+inline constexpr const char* spools = "notify.spools";              // in order, immediately
 }  // namespace notify
 
 namespace topic {
@@ -25,6 +26,7 @@ inline constexpr const char* cell = "cell";
 inline constexpr const char* log = "log";
 inline constexpr const char* queue = "queue";
 inline constexpr const char* history = "history";
+inline constexpr const char* spools = "spools";
 }  // namespace topic
 
 enum class Delivery {
@@ -37,7 +39,7 @@ enum class Delivery {
 };
 
 struct ApiEvent {
-    std::string topic;   // job id, "cell", "log", "queue", "history"
+    std::string topic;   // job id, "cell", "log", "queue", "history", "spools"
     std::string method;  // notify.*
     nlohmann::json params = nlohmann::json::object();
     Delivery delivery = Delivery::every;

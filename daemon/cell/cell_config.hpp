@@ -31,7 +31,7 @@ struct CellConfig {
 
 // The sections only the service reads (api:, jobs:, print:, queue:); other readers of a cell YAML
 // (`fibrecell plan --cell`) pass over them.
-inline constexpr const char* service_sections[] = {"api", "jobs", "print", "queue", "history"};
+inline constexpr const char* service_sections[] = {"api", "jobs", "print", "queue", "history", "spools"};
 
 // Loads and validates a cell YAML file; throws config::ConfigError naming the key. `service`
 // reads the service's own sections from the root (fibrecelld); without it they are skipped.

@@ -1,6 +1,7 @@
 #include "daemon/history/history_record.hpp"
 
 #include "daemon/jobs/job_journal.hpp"
+#include "daemon/jobs/planned_use.hpp"
 
 #include <fstream>
 #include <stdexcept>
@@ -98,16 +99,11 @@ HistoryRecord record_of(const jobs::JobRecord& job, const std::filesystem::path&
     r.ended_at = job.ended_at.empty() ? job.updated_at : job.ended_at;
 
     const json report = read_json_file(job_dir / "plan" / "report.json");
-    if (report.is_object()) {
-        r.strategy = report.value("strategy", "");
-        if (report.contains("layers") && report["layers"].is_object())
-            r.layers_total = report["layers"].value("pla", 0) + report["layers"].value("ccf", 0);
-        if (report.contains("fibre")) r.fibre_planned_m = report["fibre"].value("length_m", 0.0);
-        // PLA: filament, as the board is fed, from the path length and the plan's flow.
-        const json print = read_json_file(job_dir / "plan" / "print.json");
-        if (report.contains("pla") && print.is_object() && print.contains("board"))
-            r.pla_planned_m = report["pla"].value("length_m", 0.0) *
-                              print["board"].value("pla_e_per_path_mm", 0.0);
+    if (report.is_object()) r.strategy = report.value("strategy", "");
+    if (const auto planned = jobs::planned_use(job_dir / "plan")) {
+        r.layers_total = planned->layers;
+        r.fibre_planned_m = planned->fibre_m;
+        r.pla_planned_m = planned->pla_m;
     }
 
     const auto journal = job_dir / "journal.jsonl";

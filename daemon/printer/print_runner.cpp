@@ -52,13 +52,16 @@ struct PrintRunner::Active {
     // The job's filament: what earlier runs used, plus the link's ledger since this run began.
     jobs::JournalUsed used_before, used_saved;
     drivers::marlin::FeedTotals board_fed_at_start;
+    std::uint64_t run = 0;  // Feed::run
     sync::SyncStatus sync;  // as of the last poll
 };
 
 PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const CellConfig& cell,
                          PrintRunnerOptions options)
     : store_(store), devices_(devices), cell_(cell), options_(options),
-      heaters_(options.heaters, Clock::now()) {
+      heaters_(options.heaters, Clock::now()),
+      last_run_(static_cast<std::uint64_t>(
+          std::chrono::system_clock::now().time_since_epoch() / std::chrono::microseconds(1))) {
     thread_ = std::thread([this] {
         config::name_this_thread("print.runner");
         run();
@@ -68,6 +71,8 @@ PrintRunner::PrintRunner(jobs::JobStore& store, CellDevices& devices, const Cell
 PrintRunner::~PrintRunner() { stop(); }
 
 void PrintRunner::on_finished(std::function<void(std::int64_t)> f) { on_finished_ = std::move(f); }
+
+void PrintRunner::on_feed(FeedObserver f) { on_feed_ = std::move(f); }
 
 void PrintRunner::on_progress(std::function<void(std::int64_t, const json&)> f) {
     on_progress_ = std::move(f);
@@ -411,6 +416,7 @@ void PrintRunner::start_job(std::int64_t id) {
     a->journal = store_.journal(id);
     a->used_before = a->used_saved = a->journal->last_used().value_or(jobs::JournalUsed{});
     a->board_fed_at_start = devices_.board().fed();
+    a->run = ++last_run_;
     std::optional<print::FibreFed> fed;
     if (const auto f = a->journal->last_fed()) fed = print::FibreFed{f->sequence, f->mm};
     try {
@@ -618,6 +624,7 @@ jobs::JournalUsed PrintRunner::save_used(Active& a) {
         std::abs(used.fibre_mm - a.used_saved.fibre_mm) > 1e-6) {
         a.journal->used(used);
         a.used_saved = used;
+        if (on_feed_) on_feed_({a.id, a.run, used, a.layer.load()});
     }
     return used;
 }

@@ -71,6 +71,18 @@ class PrintRunner {
     // A print left the cell and its figures are written (result.json, the journal); before the
     // first start.
     void on_finished(std::function<void(std::int64_t id)> f);
+    // The filament the job has taken so far (all runs), each poll it changed, and the layer being
+    // printed; `run` tells the job's runs apart (unique across restarts: a re-entry is a new run,
+    // its count continuing from the journal's). On the runner's thread, must not block for long.
+    // Before the first start.
+    struct Feed {
+        std::int64_t job = 0;
+        std::uint64_t run = 0;
+        jobs::JournalUsed used;
+        int layer = -1;
+    };
+    using FeedObserver = std::function<void(const Feed& feed)>;
+    void on_feed(FeedObserver f);
 
     // The job was moved to starting by the store (job.start or job.resume of an interrupted
     // job); the runner takes it from there.
@@ -129,12 +141,14 @@ class PrintRunner {
     PrintRunnerOptions options_;
     std::function<void(std::int64_t, const nlohmann::json&)> on_progress_;
     std::function<void(std::int64_t)> on_finished_;
+    FeedObserver on_feed_;
 
     mutable std::mutex mu_;
     std::condition_variable cv_;
     std::deque<Command> commands_;
     std::unique_ptr<Active> active_;
     HeaterPolicy heaters_;
+    std::uint64_t last_run_;  // from the clock at construction: unique across restarts
     bool heaters_unreachable_logged_ = false;  // the runner's thread only
     std::optional<std::chrono::steady_clock::time_point> last_idle_reconnect_;  // the same
     bool stopping_ = false;

@@ -55,6 +55,8 @@ void PrinterComponent::on_print_finished(std::function<void(std::int64_t)> f) {
     finished_.push_back(std::move(f));
 }
 
+void PrinterComponent::on_feed(PrintRunner::FeedObserver f) { feed_.push_back(std::move(f)); }
+
 std::optional<std::string> PrinterComponent::held_at_gate(const JobRecord& r) const {
     for (const StartGate& gate : gates_)
         if (auto reason = gate(r)) return reason;
@@ -118,6 +120,9 @@ void PrinterComponent::start() {
     runner_ = std::make_unique<PrintRunner>(jobs_.store(), cell_.devices(), config_, options_);
     runner_->on_finished([this](std::int64_t id) {
         for (const auto& f : finished_) f(id);
+    });
+    runner_->on_feed([this](const PrintRunner::Feed& feed) {
+        for (const auto& f : feed_) f(feed);
     });
     runner_->on_progress([this](std::int64_t id, const json& progress) {
         endpoints_.publish({.topic = std::to_string(id),

@@ -14,6 +14,8 @@
 //                   that starts jobs of its own (the print queue).
 //   on_print_finished  a print left the cell (completed or aborted) and its figures are written
 //                   (result.json, the journal's last `used`): the history takes them from there.
+//   on_feed         the filament the print has taken so far, as the board's count grows (the
+//                   spools subtract it).
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/component/component.hpp"
@@ -47,6 +49,7 @@ class PrinterComponent : public component::Component {
     void add_start_gate(StartGate gate);  // before start()
     // On the runner's thread, after result.json; before start().
     void on_print_finished(std::function<void(std::int64_t id)> f);
+    void on_feed(PrintRunner::FeedObserver f);  // on the runner's thread; before start()
 
     // job.start: the gates, the store's start, then the runner. Throws api::ApiError (conflict
     // with the gate's or the store's reason, not found). `by`: who started it (the record's
@@ -74,6 +77,7 @@ class PrinterComponent : public component::Component {
     component::Endpoints endpoints_;
     std::vector<StartGate> gates_;
     std::vector<std::function<void(std::int64_t)>> finished_;
+    std::vector<PrintRunner::FeedObserver> feed_;
     std::mutex start_mu_;  // a gate's answer and the start it allows, as one step
     // Jobs submitted with `start` whose start was refused once planned, and why: their view says
     // so (`start_refused`), so that a watching client need not wait for a start that will not come.

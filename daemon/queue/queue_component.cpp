@@ -59,6 +59,15 @@ QueueComponent::QueueComponent(jobs::JobsComponent& jobs, printer::PrinterCompon
     });
 }
 
+void QueueComponent::add_admission_check(AdmissionCheck check) {
+    admission_checks_.push_back(std::move(check));
+}
+
+std::vector<std::int64_t> QueueComponent::queued() const {
+    std::lock_guard lock(mu_);
+    return state_.jobs;
+}
+
 std::optional<std::string> QueueComponent::held_by_bed(const JobRecord& r) const {
     std::lock_guard lock(mu_);
     const Bed& bed = state_.bed;
@@ -102,6 +111,9 @@ void QueueComponent::register_endpoints(component::Endpoints& endpoints) {
             if (!queueable(r.state))
                 throw ApiError::conflict(job_name(id) + " is " + std::string(to_string(r.state)) +
                                          ": only a job planning or planned can be queued");
+            for (const AdmissionCheck& check : admission_checks_)
+                if (const auto why = check(r))
+                    throw ApiError::conflict(job_name(id) + " cannot be queued: " + *why);
             refuse_before_a_starting_head(position);
             const QueueState before = state_;
             state_.jobs.insert(state_.jobs.begin() + (position - 1), id);

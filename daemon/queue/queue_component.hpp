@@ -9,6 +9,11 @@
 // but for the re-entry of the interrupted job whose part is on it), the jobs' changes (a queued
 // job that started, ended or went away leaves the queue; a print that ends holds the bed), and a
 // part of cell.status.
+//
+// Hooks for the components above it:
+//   add_admission_check  a check queue.add asks before a job joins the queue (the spools: is
+//                        there filament enough); a reason refuses it.
+//   queued               the jobs waiting, in print order.
 
 #include "daemon/cell/cell_config.hpp"
 #include "daemon/api/params.hpp"
@@ -23,6 +28,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -32,8 +38,13 @@ namespace fibrecell::daemon::queue {
 
 class QueueComponent : public component::Component {
   public:
+    using AdmissionCheck = std::function<std::optional<std::string>(const jobs::JobRecord&)>;
+
     QueueComponent(jobs::JobsComponent& jobs, printer::PrinterComponent& printer,
                    devices::CellComponent& cell, const CellConfig& cell_config, QueueConfig config);
+
+    void add_admission_check(AdmissionCheck check);  // before start()
+    std::vector<std::int64_t> queued() const;
 
     void register_endpoints(component::Endpoints& endpoints) override;
     void start() override;  // reads queue.json and squares it with the jobs as loaded
@@ -70,6 +81,7 @@ class QueueComponent : public component::Component {
     QueueConfig config_;
     std::filesystem::path file_;
     component::Endpoints endpoints_;
+    std::vector<AdmissionCheck> admission_checks_;
 
     std::mutex start_mu_;  // start_next_if_due, one at a time
     mutable std::mutex mu_;

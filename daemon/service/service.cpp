@@ -9,6 +9,7 @@
 #include "daemon/printer/printer_component.hpp"
 #include "daemon/printer/printer_config.hpp"
 #include "daemon/queue/queue_component.hpp"
+#include "daemon/spools/spools_component.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -28,6 +29,7 @@ ServiceConfig load_service_config(const std::string& path) {
         c.print = printer::load_print_options(root.section("print"));
         c.queue = queue::load_queue_config(root.section("queue"));
         c.history = history::load_history_config(root.section("history"));
+        c.spools = spools::load_spools_config(root.section("spools"));
     });
     return c;
 }
@@ -57,8 +59,9 @@ Service::Service(boost::asio::io_context& io, ServiceConfig config)
                                       .realtime_priority = config_.print.realtime_priority});
     auto& jobs = add<jobs::JobsComponent>("jobs", config_.cell, config_.jobs);
     printer_ = &add<printer::PrinterComponent>("printer", jobs, cell, config_.cell, config_.print);
-    add<queue::QueueComponent>("queue", jobs, *printer_, cell, config_.cell, config_.queue);
+    auto& queue = add<queue::QueueComponent>("queue", jobs, *printer_, cell, config_.cell, config_.queue);
     add<history::HistoryComponent>("history", jobs, *printer_, config_.cell, config_.history);
+    add<spools::SpoolsComponent>("spools", jobs, *printer_, queue, cell, config_.cell, config_.spools);
     add<logs::LogComponent>("log");
 }
 

@@ -16,6 +16,7 @@
 #include "daemon/printer/print_runner.hpp"
 #include "daemon/history/history_config.hpp"
 #include "daemon/queue/queue_config.hpp"
+#include "daemon/spools/spools_config.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -38,6 +39,7 @@ struct ServiceConfig {
     printer::PrintRunnerOptions print;
     queue::QueueConfig queue;
     history::HistoryConfig history;
+    spools::SpoolsConfig spools;
 };
 
 // The cell YAML with the service's sections (api:, jobs:, print:); throws config::ConfigError.

@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
+#include <sstream>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -113,6 +115,20 @@ class ExternalCell {
     void kill_robot() { robot_->kill_now(); }
 
     const fs::path& board_log() const { return board_log_; }
+    // Filament the board ran per tool [mm], from its log ("<t>\t<command>" lines): the E of every
+    // relative G1 E, charged to the tool selected last (T0 PLA, T1 fibre).
+    std::array<double, 2> board_fed() const {
+        std::array<double, 2> mm{};
+        std::istringstream in(read_file(board_log_));
+        std::string line;
+        std::size_t tool = 0;
+        while (std::getline(in, line)) {
+            const std::string cmd = line.substr(line.find('\t') + 1);
+            if (cmd == "T0" || cmd == "T1") tool = cmd == "T1" ? 1 : 0;
+            if (cmd.rfind("G1 E", 0) == 0) mm[tool] += std::stod(cmd.substr(4));
+        }
+        return mm;
+    }
     const fs::path& trajectory() const { return trajectory_; }
     // What the simulated IRC5 printed (its task's TPWrite lines among them).
     std::string robot_log() const { return robot_->log(); }

@@ -21,21 +21,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-// Filament the board ran per tool [mm], from its log ("<t>\t<command>" lines): the E of every
-// relative G1 E, charged to the tool selected last (T0 PLA, T1 fibre).
-std::array<double, 2> board_ran(const std::string& log) {
-    std::array<double, 2> mm{};
-    std::istringstream in(log);
-    std::string line;
-    std::size_t tool = 0;
-    while (std::getline(in, line)) {
-        const std::string cmd = line.substr(line.find('\t') + 1);
-        if (cmd == "T0" || cmd == "T1") tool = cmd == "T1" ? 1 : 0;
-        if (cmd.rfind("G1 E", 0) == 0) mm[tool] += std::stod(cmd.substr(4));
-    }
-    return mm;
-}
-
 // RFC 4180: fields separated by commas, records by CRLF, a quoted field may hold commas, CRLF
 // and doubled quotes.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -96,7 +81,7 @@ TEST_F(ServiceTest, TheHistoryRecordsWhatTheBoardFedForACompletedAnAbortedAndAnI
         << "name: \"=cmd|' /C calc'!A0, \\\"x\\\"\"\nmodel:\n  mesh: bar.vtk\n"
            "placement:\n  position_mm: [150, 150]\nprocess:\n  pla: {speed_mm_s: 24}\n";
     start_service(dir_ / "cell.yaml");
-    const auto board = [&] { return board_ran(read_file(devices.board_log())); };
+    const auto board = [&] { return devices.board_fed(); };
     const auto job_journal = [&](std::int64_t id) {
         return state_dir() / "jobs" / std::to_string(id) / "journal.jsonl";
     };

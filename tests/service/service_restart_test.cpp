@@ -100,21 +100,6 @@ std::pair<std::int64_t, double> last_fed(const fs::path& p) {
     return fed;
 }
 
-// Fibre the board fed, from its own log: the E of every G1 E it ran with the fibre's tool (T1).
-double fibre_fed_mm(const std::string& log) {
-    std::istringstream in(log);
-    std::string line;
-    bool fibre_tool = false;
-    double fed = 0;
-    while (std::getline(in, line)) {
-        const std::string cmd = line.substr(line.find('\t') + 1);
-        if (cmd == "T0") fibre_tool = false;
-        if (cmd == "T1") fibre_tool = true;
-        if (fibre_tool && cmd.rfind("G1 E", 0) == 0) fed += std::stod(cmd.substr(4));
-    }
-    return fed;
-}
-
 Journal read_journal(const fs::path& p) {
     Journal j;
     std::ifstream in(p);
@@ -212,7 +197,7 @@ TEST_F(ServiceTest, KilledMidPrintTheJobComesBackInterruptedAndResumesWithoutRep
     double planned_mm = 0;
     for (const auto& [seq, e] : planned_events(state_dir() / "jobs" / std::to_string(id) / "plan" / "program.json"))
         if (e.kind == "fibre_start") planned_mm += e.length_mm + 42;
-    const double fed_mm = fibre_fed_mm(log);
+    const double fed_mm = devices.board_fed()[1];
     if (std::getenv("FIBRECELL_TEST_SHOW_LOG")) std::printf("%s\n", service_->log().c_str());
     std::printf("fibre fed %.1f mm, planned %.1f mm, one re-thread 42 mm: %+.1f mm\n", fed_mm,
                 planned_mm, fed_mm - planned_mm - 42);

@@ -7,6 +7,7 @@
 #include "tools/fibrecell/plan_command.hpp"
 #include "tools/fibrecell/queue_commands.hpp"
 #include "tools/fibrecell/service_commands.hpp"
+#include "tools/fibrecell/spool_command.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
     fibrecell::tools::add_service_commands(app, exit_code);
     fibrecell::tools::add_queue_commands(app, exit_code);
     fibrecell::tools::add_history_command(app, exit_code);
+    fibrecell::tools::add_spool_command(app, exit_code);
     app.parse_complete_callback(
         [&] { fibrecell::config::setup_logging(verbose ? "info" : "warn"); });
     CLI11_PARSE(app, argc, argv);

@@ -1,8 +1,9 @@
-// The Jobs page: the print queue and the bed (queue.js), every job with its state, submitting a
-// job (its YAML and the files it names, as `fibrecell submit` sends them), and the actions its
+// The Jobs page: the print queue and the bed (queue.js), the spools (spools.js), every job with
+// its state, submitting a job (its YAML and the files it names, as `fibrecell submit` sends them), and the actions its
 // state allows. The service decides: a refused action shows the service's own reason.
 import { el, errorText } from "./ui.js";
 import { queueCard } from "./queue.js";
+import { spoolsCard } from "./spools.js";
 
 // Which buttons a state shows (job_state.hpp has the one table; the service still checks).
 export const actions = {
@@ -102,11 +103,14 @@ export async function render(main, { rpc }) {
   const holder = el("div", { id: "jobs-holder" });
   const redraw = () => holder.replaceChildren(table(rpc, message));
   const queue = queueCard(rpc);
-  main.append(submitForm(rpc, (job) => { jobs.set(job.id, job); redraw(); }), queue.card,
+  const spools = spoolsCard(rpc);
+  main.append(submitForm(rpc, (job) => { jobs.set(job.id, job); redraw(); }), queue.card, spools.card,
               el("h2", {}, "Jobs"), message, holder);
-  await rpc.subscribe(["*"]);  // every job's state changes, and the queue's
-  unsubscribe.push(rpc.on("notify.queue", (q) => queue.draw(q)));
+  await rpc.subscribe(["*"]);  // every job's state changes, the queue's and the spools'
+  unsubscribe.push(rpc.on("notify.queue", (q) => { queue.draw(q); spools.refresh(); }));
+  unsubscribe.push(rpc.on("notify.spools", (list) => spools.draw(list)));
   await queue.refresh();
+  await spools.refresh();
   unsubscribe.push(rpc.on("notify.job_state", (job) => {
     if (job.state === "removed") jobs.delete(job.id); else jobs.set(job.id, job);
     redraw();
