@@ -410,7 +410,10 @@ void QueueComponent::job_changed(const JobRecord& r) {
             may_start_next = true;  // the next may be due (it left without printing)
         }
         if (queue_started_ == r.id && r.state != JobState::starting) queue_started_ = 0;
-        if (touched) changed();
+        if (touched)
+            changed();
+        else if (queued)
+            publish();  // a queued job's state shows in the queue (planned now)
     }
     if (may_start_next) start_next_if_due();
 }

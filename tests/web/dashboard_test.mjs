@@ -280,6 +280,11 @@ async function main() {
   }, {}, third);
   if (JSON.stringify(await queued(page)) !== JSON.stringify([third, second]))
     fail(`after "down" the queue shows ${JSON.stringify(await queued(page))}, not [${third}, ${second}]`);
+  // The spools card: both hotends, none loaded here (not checked), and what the queue needs.
+  await page.waitForSelector('#spool-rows tr[data-spool="T1"]');
+  const spools = await page.$eval("#spools-card", (c) => c.textContent);
+  if (!spools.includes("T1 (fibre)") || !spools.includes("no spool loaded"))
+    fail(`the spools card reads "${spools}"`);
   await page.click("#clear-cell");
   await page.waitForFunction(() => document.querySelector("#bed-state").textContent === "bed clear");
   await shot(page, "jobs");
