@@ -6,6 +6,9 @@
 
 #include <gmock/gmock.h>
 
+#include <algorithm>
+#include <pwd.h>
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 
@@ -114,6 +117,36 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
     EXPECT_EQ(second.status, second_warned ? 1 : 0) << second.out;
     EXPECT_THAT(second.out, HasSubstr(second_warned ? "job 2 (bar) completed_with_warnings: "
                                                     : "job 2 (bar) completed: "));
+
+    // The history of both, as a table and as CSV (docs/history.md).
+    EXPECT_TRUE(eventually([&] {
+        return fibrecell_cli("history --json" + sock).out.find("\"count\":2") != std::string::npos;
+    }, 10s, 100ms)) << fibrecell_cli("history --json" + sock).out;
+    const CliRun history = fibrecell_cli("history" + sock);
+    EXPECT_EQ(history.status, 0);
+    const passwd* me = ::getpwuid(::getuid());  // the socket's user started them
+    EXPECT_THAT(history.out, HasSubstr(std::string("bar (") + (me ? me->pw_name : "uid") ));
+    const CliRun csv = fibrecell_cli("history --csv" + sock);
+    EXPECT_EQ(csv.status, 0);
+    EXPECT_EQ(csv.out.rfind("id,name,strategy,outcome,", 0), 0u) << csv.out;
+    EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 3) << csv.out;
+    EXPECT_EQ(json::parse(fibrecell_cli("history --json --since 2999-01-01" + sock).out).value("count", -1), 0);
+    const CliRun bad_date = fibrecell_cli("history --since yesterday" + sock);
+    EXPECT_EQ(bad_date.status, 1);
+    EXPECT_THAT(bad_date.out, HasSubstr("params.since"));
+
+    // A spool, its length with a unit; without one, or below zero, refused (docs/spools.md).
+    const CliRun loaded = fibrecell_cli("spool load T1 --material \"CF 1K\" --length 250m --lot A17" + sock);
+    EXPECT_EQ(loaded.status, 0) << loaded.out;
+    EXPECT_THAT(loaded.out, HasSubstr("T1 (fibre): CF 1K, lot A17: 250.00 m left of 250.00 m"));
+    const json spools = json::parse(fibrecell_cli("spool --json" + sock).out);
+    EXPECT_DOUBLE_EQ(spools["spools"][1].value("remaining_m", 0.0), 250.0);
+    const CliRun no_unit = fibrecell_cli("spool load T0 --material PLA --length 250" + sock);
+    EXPECT_EQ(no_unit.status, 1);
+    EXPECT_THAT(no_unit.out, HasSubstr("length '250' needs a unit: mm, m, km"));
+    const CliRun negative = fibrecell_cli("spool load T0 --material PLA --length=-3m" + sock);
+    EXPECT_EQ(negative.status, 1);
+    EXPECT_THAT(negative.out, HasSubstr("must be more than 0"));
 }
 
 // A start the cell refuses (here the extruder board's port is not there) sends the job back to

@@ -208,3 +208,54 @@ TEST_F(ServiceTest, TheHistoryRecordsWhatTheBoardFedForACompletedAnAbortedAndAnI
         }
     }
 }
+
+// Retention (docs/history.md, "Keeping it"): a record older than keep_days and those beyond keep
+// are dropped as records come; with prune_plans the plan of a dropped record's job goes too, but
+// only of a job that ended: an interrupted job keeps its plan for its resume. A line of the file
+// that cannot be read is skipped and named; the rest loads.
+TEST_F(ServiceTest, TheHistoryKeepsWhatItIsToldAndPrunesOnlyThePlansOfEndedJobs) {
+    fs::create_directories(state_dir());
+    std::ofstream(state_dir() / "history.jsonl")
+        << R"({"id":90,"name":"old","outcome":"completed","ended_at":"2000-01-01T00:00:00Z"})" "\n"
+        << "not a record\n";
+    const fs::path config = write_config("history: {keep: 1, keep_days: 30, prune_plans: true}\n");
+    start_service(config);
+    auto c = client();
+    EXPECT_EQ(c.call("history.list").value("count", 0), 1);
+    EXPECT_THAT(service_->log(), HasSubstr("history.record_unreadable history.jsonl line 2"));
+    const auto ids = [&] {
+        std::vector<std::int64_t> out;
+        const json list = c.call("history.list");
+        for (const json& r : list["records"]) out.push_back(r.value("id", std::int64_t{0}));
+        return out;
+    };
+    const auto plan_of = [&](std::int64_t id) { return state_dir() / "jobs" / std::to_string(id) / "plan" / "report.json"; };
+
+    // An aborted job: the 26-year-old record goes (by age and by count).
+    const std::int64_t aborted = submit_bar(c, false);
+    ASSERT_EQ(wait_for_state(c, aborted, "planned", 120s).value("state", ""), "planned");
+    c.call("job.abort", {{"job", aborted}});
+    ASSERT_TRUE(eventually([&] { return ids() == std::vector<std::int64_t>{aborted}; }, 10s)) << c.call("history.list").dump(2);
+    EXPECT_TRUE(fs::exists(plan_of(aborted)));
+
+    // An interrupted print: the aborted job's record goes, and its plan with it.
+    c.call("cell.clear");
+    const std::int64_t interrupted = submit_bar(c, true);
+    ASSERT_EQ(wait_for_state(c, interrupted, "printing", 120s).value("state", ""), "printing");
+    ASSERT_TRUE(service_->terminate(30s));
+    start_service(config);
+    c = client();
+    ASSERT_EQ(c.call("job.get", {{"job", interrupted}}).value("state", ""), "interrupted");
+    EXPECT_EQ(ids(), std::vector<std::int64_t>{interrupted});
+    EXPECT_FALSE(fs::exists(plan_of(aborted)));
+
+    // A failed plan: the interrupted job's record goes; its plan stays for its resume.
+    const std::int64_t failed = submit_broken(c);
+    ASSERT_EQ(wait_for_state(c, failed, "failed").value("state", ""), "failed");
+    ASSERT_TRUE(eventually([&] { return ids() == std::vector<std::int64_t>{failed}; }, 10s)) << c.call("history.list").dump(2);
+    EXPECT_TRUE(fs::exists(plan_of(interrupted)));
+    const json record = c.call("history.list")["records"][0];
+    EXPECT_EQ(record.value("outcome", ""), "failed");
+    EXPECT_TRUE(record["fibre_used_m"].is_null()) << record.dump(2);  // it never printed
+    EXPECT_EQ(record.value("started_at", "?"), "");
+}
