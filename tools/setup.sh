@@ -91,6 +91,8 @@ run_demo() {
     "$release_dir/tools/fibrecell" submit "$root/examples/loop/loop.job.yaml" --start --watch ||
         outcome=$?
     "$release_dir/tools/fibrecell" status
+    # What the print used, by the board's count, beside the plan (docs/history.md).
+    "$release_dir/tools/fibrecell" history
     return "$outcome"
 }
 
