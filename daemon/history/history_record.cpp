@@ -12,16 +12,6 @@ using nlohmann::json;
 
 namespace {
 
-json read_json_file(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    if (!in) return nullptr;
-    try {
-        return json::parse(in);
-    } catch (const json::exception&) {
-        return nullptr;
-    }
-}
-
 json number_or_null(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
 std::optional<double> optional_number(const json& j, const char* key) {
@@ -98,7 +88,7 @@ HistoryRecord record_of(const jobs::JobRecord& job, const std::filesystem::path&
     r.started_at = job.started_at;
     r.ended_at = job.ended_at.empty() ? job.updated_at : job.ended_at;
 
-    const json report = read_json_file(job_dir / "plan" / "report.json");
+    const json report = jobs::read_json_file(job_dir / "plan" / "report.json");
     if (report.is_object()) r.strategy = report.value("strategy", "");
     if (const auto planned = jobs::planned_use(job_dir / "plan")) {
         r.layers_total = planned->layers;
@@ -121,7 +111,7 @@ HistoryRecord record_of(const jobs::JobRecord& job, const std::filesystem::path&
     if (job.state == jobs::JobState::completed || job.state == jobs::JobState::completed_with_warnings)
         r.layers_printed = r.layers_total;
 
-    const json result = read_json_file(job_dir / "result.json");
+    const json result = jobs::read_json_file(job_dir / "result.json");
     if (result.is_object() && result.contains("cut_error_mm") &&
         result["cut_error_mm"].value("count", 0) > 0)
         r.cut_error_p99_mm = result["cut_error_mm"].value("p99", 0.0);

@@ -3,6 +3,7 @@
 #include "config/base64.hpp"
 #include "daemon/api/params.hpp"
 #include "daemon/jobs/job_api.hpp"
+#include "daemon/jobs/planned_use.hpp"
 #include "daemon/jobs/plan_runner.hpp"
 #include "daemon/jobs/thread_pool.hpp"
 #include "daemon/print/print_settings.hpp"
@@ -20,16 +21,6 @@ using api::ParamReader;
 using nlohmann::json;
 
 namespace {
-
-json read_json_file(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    if (!in) return nullptr;
-    try {
-        return json::parse(in);
-    } catch (const json::exception&) {
-        return nullptr;
-    }
-}
 
 // What the plan directory's report.json says about the job, for people (jobs, status, watch).
 json plan_summary(const json& report) {

@@ -6,8 +6,6 @@
 
 namespace fibrecell::daemon::jobs {
 
-namespace {
-
 nlohmann::json read_json_file(const std::filesystem::path& p) {
     std::ifstream in(p);
     if (!in) return nullptr;
@@ -17,8 +15,6 @@ nlohmann::json read_json_file(const std::filesystem::path& p) {
         return nullptr;
     }
 }
-
-}  // namespace
 
 std::optional<PlannedUse> planned_use(const std::filesystem::path& plan_dir) {
     const nlohmann::json report = read_json_file(plan_dir / "report.json");

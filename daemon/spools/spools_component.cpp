@@ -106,13 +106,7 @@ void SpoolsComponent::register_endpoints(component::Endpoints& endpoints) {
         std::lock_guard lock(mu_);
         const SpoolState before = state_;
         state_.spools[tool] = s;
-        try {
-            write_spools(file_, state_);
-            unsaved_ = false;
-        } catch (const std::exception& e) {
-            state_ = before;
-            throw ApiError::unavailable("the spool cannot be saved: " + std::string(e.what()));
-        }
+        commit(before);
         spdlog::info("spool.loaded {} {} {} by {}", tool, s.material, metres(s.loaded_mm), ctx.peer);
         publish(needs);
         return view(needs);
@@ -127,13 +121,7 @@ void SpoolsComponent::register_endpoints(component::Endpoints& endpoints) {
             throw ApiError::conflict(tool + " has no spool loaded");
         const SpoolState before = state_;
         state_.spools.erase(tool);
-        try {
-            write_spools(file_, state_);
-            unsaved_ = false;
-        } catch (const std::exception& e) {
-            state_ = before;
-            throw ApiError::unavailable("the change cannot be saved: " + std::string(e.what()));
-        }
+        commit(before);
         spdlog::info("spool.unloaded {} by {}", tool, ctx.peer);
         publish(needs);
         return view(needs);
@@ -243,6 +231,16 @@ void SpoolsComponent::fed_and_saved(const printer::PrintRunner::Feed& f) {
     const json needs = queue_needs();
     std::lock_guard lock(mu_);
     publish(needs);
+}
+
+void SpoolsComponent::commit(const SpoolState& before) {
+    try {
+        write_spools(file_, state_);
+        unsaved_ = false;
+    } catch (const std::exception& e) {
+        state_ = before;
+        throw ApiError::unavailable("the spools cannot be saved: " + std::string(e.what()));
+    }
 }
 
 void SpoolsComponent::save() {

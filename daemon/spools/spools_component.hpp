@@ -50,6 +50,8 @@ class SpoolsComponent : public component::Component {
     void fed(double pla_mm, double fibre_mm);
     // A print's count grew: charged to the spools; saved and published at a new layer.
     void fed_and_saved(const printer::PrintRunner::Feed& feed);
+    // An operator's change: saved, or undone and refused (ApiError unavailable). Lock held.
+    void commit(const SpoolState& before);
     void save();  // lock held; a failure is logged, the state holds in memory
     // What the queued jobs' plans will feed. Takes the queue's lock: never call with ours held
     // (the queue asks short_of() with its lock held).
