@@ -24,6 +24,9 @@ namespace {
 
 bool at_an_end(JobState s) { return jobs::is_ended(s) || s == JobState::interrupted; }
 
+// When a job ended, as its record says (state files from before ended_at: its last change).
+std::string ended_at(const JobRecord& r) { return r.ended_at.empty() ? r.updated_at : r.ended_at; }
+
 // "2026-12-07" or "2026-12-07T14:00:00Z": compared with the records' ISO times as text.
 std::string since_param(api::ParamReader& p) {
     const std::string since = p.string("since");
@@ -81,8 +84,26 @@ void HistoryComponent::start() {
         records_ = read.records;
     }
     // Jobs that ended while nobody recorded them: interrupted by a crash, or the service stopped
-    // between a job's end and its record.
-    for (const JobRecord& r : jobs_.store().list()) take(r);
+    // between a job's end and its record. Not those recorded at that end already, nor those that
+    // ended before the newest record (the retention dropped them: they stay dropped); times are
+    // to the second, so within the newest record's second the higher job id counts as later.
+    std::pair<std::string, std::int64_t> newest;
+    {
+        std::lock_guard lock(mu_);
+        for (const HistoryRecord& h : records_) newest = std::max(newest, {h.ended_at, h.id});
+    }
+    for (const JobRecord& r : jobs_.store().list()) {
+        if (!at_an_end(r.state)) continue;
+        const std::string ended = ended_at(r);
+        bool recorded = false;
+        {
+            std::lock_guard lock(mu_);
+            recorded = std::any_of(records_.begin(), records_.end(), [&](const HistoryRecord& h) {
+                return h.id == r.id && h.ended_at == ended;
+            });
+        }
+        if (!recorded && std::pair{ended, r.id} > newest) take(r);
+    }
 }
 
 void HistoryComponent::take(const JobRecord& job) {

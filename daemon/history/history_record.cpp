@@ -86,7 +86,7 @@ HistoryRecord record_of(const jobs::JobRecord& job, const std::filesystem::path&
     r.submitted_at = job.submitted_at;
     r.planned_at = job.planned_at;
     r.started_at = job.started_at;
-    r.ended_at = job.ended_at.empty() ? job.updated_at : job.ended_at;
+    r.ended_at = job.ended_at.empty() ? job.updated_at : job.ended_at;  // older state files
 
     const json report = jobs::read_json_file(job_dir / "plan" / "report.json");
     if (report.is_object()) r.strategy = report.value("strategy", "");

@@ -261,4 +261,12 @@ TEST_F(ServiceTest, TheHistoryKeepsWhatItIsToldAndPrunesOnlyThePlansOfEndedJobs)
     EXPECT_EQ(record.value("outcome", ""), "failed");
     EXPECT_TRUE(record["fibre_used_m"].is_null()) << record.dump(2);  // it never printed
     EXPECT_EQ(record.value("started_at", "?"), "");
+
+    // A restart brings back none of the dropped records (their jobs are still in the store),
+    // nor records the kept one again.
+    ASSERT_TRUE(service_->terminate(30s));
+    start_service(config);
+    c = client();
+    EXPECT_EQ(ids(), std::vector<std::int64_t>{failed});
+    EXPECT_EQ(service_->log().find("history.recorded"), std::string::npos) << service_->log();
 }
