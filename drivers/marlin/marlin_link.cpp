@@ -391,6 +391,9 @@ void MarlinLink::abort() {
         if (!m.proto || m.proto->failed()) return;
         m.proto->discard_unsent();
         const std::int64_t next = m.proto->next_line();
+        // Never sent, never fed; and their numbers go to the next lines, whose oks must not
+        // charge them.
+        while (!m.feed_lines.empty() && m.feed_lines.back().first >= next) m.feed_lines.pop_back();
         // Requests that still had unsent lines are over; older ones complete with their oks.
         for (auto it = m.requests.begin(); it != m.requests.end();) {
             if (it->last_line >= next) {

@@ -479,3 +479,18 @@ TEST_F(MarlinLinkTest, AColdExtrusionRefusalIsNotCharged) {
     ASSERT_TRUE(finish(link_.submit({"M302 P1", "G1 E5 F3000"})).ok());  // cold extrusion allowed
     EXPECT_NEAR(link_.fed().of(1), 5.0, 1e-9);
 }
+
+// An abort drops the lines not sent yet, and the next lines take their numbers: their oks must
+// not charge the dropped moves (they were, once: a stopped print's fibre 13 mm over the board's).
+TEST_F(MarlinLinkTest, MovesAnAbortDroppedAreNotChargedWhenTheirNumbersComeAgain) {
+    start({.emergency_parser = true, .min_extrude_temp_c = 0});
+    ASSERT_TRUE(finish(link_.submit({"M83", "T1", "G1 E2 F3000"})).ok());
+    const auto sent = link_.stats().lines_sent;
+    auto held = link_.submit({"G4 S1", "G1 E5 F3000", "G1 E7 F3000"});  // the dwell holds the rest
+    ASSERT_TRUE(eventually([&] { return link_.stats().lines_sent > sent; }));  // G4 on the wire
+    link_.abort();
+    EXPECT_EQ(finish(std::move(held)).failure, LinkFailure::aborted);
+    ASSERT_TRUE(finish(link_.submit({"M117 a", "M117 b", "M117 c"})).ok());
+    for (const std::string& c : executed_job()) EXPECT_NE(c, "G1 E5 F3000");
+    EXPECT_NEAR(link_.fed().of(1), 2.0, 1e-9);
+}
