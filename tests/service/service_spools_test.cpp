@@ -176,3 +176,19 @@ TEST_F(ServiceTest, KilledMidPrintTheSpoolsLoseAtMostALayerAndTheNextStartSaysWh
         EXPECT_THAT(list.value("note", ""), HasSubstr("job " + std::to_string(id)));
     }
 }
+
+// spools.check: warn lets the job go ahead and says in the log what it is short of.
+TEST_F(ServiceTest, WithSpoolsCheckWarnAShortSpoolOnlyWarns) {
+    start_service(write_config("spools: {check: warn, margin_percent: 0, margin_m: 0}\n"));
+    auto c = client();
+    c.call("spool.load", {{"tool", "T1"}, {"material", "CF 1K"}, {"length_mm", 500}});
+    EXPECT_EQ(c.call("spool.list").value("check", ""), "warn");
+    const std::int64_t id = submit_bar(c, false);
+    ASSERT_EQ(wait_for_state(c, id, "planned", 120s).value("state", ""), "planned");
+    EXPECT_EQ(c.call("queue.add", {{"job", id}})["jobs"].size(), 1u);
+    EXPECT_EQ(c.call("job.start", {{"job", id}}).value("state", ""), "starting");
+    EXPECT_THAT(service_->log(), HasSubstr("spools.short job " + std::to_string(id) + " may start (spools.check: warn)"));
+    EXPECT_THAT(service_->log(), HasSubstr("T1 (CF 1K) has 0.50 m left"));
+    c.call("job.abort", {{"job", id}});
+    EXPECT_EQ(wait_for_state(c, id, "aborted").value("state", ""), "aborted");
+}
