@@ -660,7 +660,6 @@ void PrintRunner::finish(const std::string& outcome, const std::string& outcome_
     }
     spdlog::info("print.finished job {} {}", a->id, result.dump());
     a->session.reset();
-    if (a->journal) a->journal->flush();
     if (on_finished_) on_finished_(a->id);
 }
 
