@@ -280,7 +280,7 @@ void EventProcessor::start_metering(const ProgramEvent& e, SteadyClock::time_poi
     const double ratio = fibre ? 1.0 : pla_e_per_path_mm_;
     auto pieces = split_feed(e.length_mm, e.length_mm * ratio,
                              fibre ? options_.fibre_piece_mm : options_.pla_piece_mm);
-    const MeterPacing pacing{e.speed_mm_s, options_.lead_s, options_.time_scale};
+    const MeterPacing pacing{e.speed_mm_s, effective_lead_s(options_), options_.time_scale};
     metering_.emplace(MeteredPath{&e, FeedMeter(std::move(pieces), pacing, robot_start), ratio});
     if (paused_) metering_->meter.pause(SteadyClock::now());
 }

@@ -16,6 +16,10 @@ void require_positive(double v, const char* field) {
 
 }  // namespace
 
+double effective_lead_s(const SyncOptions& options) {
+    return std::max(options.lead_s, options.min_lead_real_s * options.time_scale);
+}
+
 void validate(const SyncOptions& o, std::int64_t events_total) {
     require_positive(o.hotends.pla_c, "hotends.pla_c");
     require_positive(o.hotends.ccf_c, "hotends.ccf_c");
@@ -29,6 +33,9 @@ void validate(const SyncOptions& o, std::int64_t events_total) {
     require_positive(o.late_cut_mm, "late_cut_mm");
     if (!(o.lead_s >= 0) || !std::isfinite(o.lead_s))
         throw std::invalid_argument("sync: lead_s must be >= 0, got " + std::to_string(o.lead_s));
+    if (!(o.min_lead_real_s >= 0) || !std::isfinite(o.min_lead_real_s))
+        throw std::invalid_argument("sync: min_lead_real_s must be >= 0, got " +
+                                    std::to_string(o.min_lead_real_s));
     if (o.first_event < 1 || o.first_event > events_total + 1)
         throw std::invalid_argument("sync: first_event " + std::to_string(o.first_event) +
                                     " outside 1.." + std::to_string(events_total + 1));

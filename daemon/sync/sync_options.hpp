@@ -36,6 +36,11 @@ struct SyncOptions {
     double fibre_piece_mm = 1;         // path covered by one metered fibre G1 E
     double pla_piece_mm = 2;           // path covered by one metered PLA G1 E
     double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
+    // The lead is at least this much real time (only a high time scale makes it longer): the
+    // host's latencies (the robot I/O poll every 2 ms, a serial round trip) are real milliseconds,
+    // which at the demo's 120x were more than the 2.5 ms that 0.3 s of path came to, and every
+    // path ended with feed still unsent.
+    double min_lead_real_s = 0.02;
     double time_scale = 1;             // simulated seconds per real second (simulated cell)
     std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
     // The print's latency samples, shared by the engines of one print (a resume after a device
@@ -50,6 +55,10 @@ struct SyncOptions {
     // until the board's own reports come; none: a head switch waits for a report or heats.
     std::optional<double> pla_hotend_c, ccf_hotend_c;
 };
+
+// The lead the meter paces with [s of path]: lead_s, or min_lead_real_s of real time when that
+// is longer (a simulated cell at a high time scale).
+double effective_lead_s(const SyncOptions& options);
 
 // Throws std::invalid_argument naming the field: non-positive sizes, speeds or windows,
 // a negative lead, first_event outside 1..events_total + 1, a resume_feed that does not name a

@@ -1,6 +1,7 @@
 // Metering one path's feed: pieces that add up exactly, and their pacing against the robot's
 // expected position (lead, time scale, pause and resume), with hand-made time points.
 #include "daemon/sync/feed_meter.hpp"
+#include "daemon/sync/sync_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -147,4 +148,24 @@ TEST(FeedMeter, ResumingOutsideThePathsFeedIsRefused) {
     FeedMeter nothing_fed = ten_pieces(SteadyClock::now(), 0.1);
     nothing_fed.skip_fed(0, SteadyClock::now());
     EXPECT_EQ(nothing_fed.sent(), 0u);
+}
+
+// The lead in real time: 0.3 s of path on the real cell, and at a simulated cell's high time
+// scale at least 20 ms of real time (at 120x, 0.3 s of path would be 2.5 ms, less than the host's
+// own latencies: the demo's paths ended with feed unsent).
+TEST(FeedMeter, AHighTimeScaleKeepsTheLeadAtLeastTwentyRealMilliseconds) {
+    SyncOptions o;
+    EXPECT_DOUBLE_EQ(effective_lead_s(o), 0.3);
+    o.time_scale = 10;
+    EXPECT_DOUBLE_EQ(effective_lead_s(o), 0.3);  // 30 ms of real time already
+    o.time_scale = 120;
+    EXPECT_DOUBLE_EQ(effective_lead_s(o), 2.4);
+    // Paced with it at the start of a 10 mm path at 5 mm/s (2 s of path, 16.7 ms of real time at
+    // 120x), every piece is within the lead; with the bare 0.3 s only the first (it ends 0.2 s in).
+    const auto t0 = SteadyClock::now();
+    FeedMeter m = ten_pieces(t0, effective_lead_s(o), o.time_scale);
+    EXPECT_EQ(m.take_due(t0).size(), 10u);
+    o.min_lead_real_s = 0;
+    FeedMeter bare = ten_pieces(t0, effective_lead_s(o), o.time_scale);
+    EXPECT_EQ(bare.take_due(t0).size(), 1u);
 }

@@ -31,7 +31,9 @@ struct MotionSimulator::Impl {
         changed.notify_all();
     }
     void run();
-    double catch_up_target(double tick_t) const;
+    // Where the robot goes next: to `until_s` (at least the next tick), but no further than the
+    // tick of the first trigger due on the way.
+    double catch_up_target(double tick_t, double until_s) const;
 
     const SimClock& clock;
     const MotionOptions options;
@@ -48,8 +50,8 @@ struct MotionSimulator::Impl {
     std::thread thread;  // last: starts once the rest is built
 };
 
-double MotionSimulator::Impl::catch_up_target(double tick_t) const {
-    double target = std::max(tick_t, clock.now_s());
+double MotionSimulator::Impl::catch_up_target(double tick_t, double until_s) const {
+    double target = std::max(tick_t, until_s);
     if (const auto trigger = plan.next_trigger_s(); trigger && *trigger < target) {
         const double ticks = std::ceil((*trigger - plan.time()) / options.tick_s);
         target = std::max(tick_t, plan.time() + ticks * options.tick_s);
@@ -67,12 +69,15 @@ void MotionSimulator::Impl::run() {
         }
         // Absolute tick times. A thread that fell behind the clock (a loaded machine, a high time
         // scale) catches up in one step instead of replaying every missed tick, but stops at the
-        // first tick of a trigger due on the way: the trigger sees the robot where it fired.
+        // first tick of a trigger due on the way: the trigger sees the robot where it fired. At a
+        // high time scale it sleeps for several ticks at once (MotionOptions::min_wake_real_s).
         const double tick_t = plan.time() + options.tick_s;
+        const double wake_t = catch_up_target(
+            tick_t, clock.now_s() + options.min_wake_real_s * clock.time_scale());
         lock.unlock();
-        clock.sleep_until(tick_t);
+        clock.sleep_until(wake_t);
         lock.lock();
-        auto due = plan.advance_to(catch_up_target(tick_t));
+        auto due = plan.advance_to(catch_up_target(tick_t, clock.now_s()));
         std::string failure;
         if (!due.empty()) {
             // Outside the lock: a callback may ask where the robot is.

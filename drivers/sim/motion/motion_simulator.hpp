@@ -84,6 +84,10 @@ struct MotionOptions {
     abb::JointSolverOptions solver{.cfx = 1};  // margins; the cfx comes from each target
     double accel_mm_s2 = 1000;                 // TCP acceleration and deceleration
     double tick_s = 0.001;                     // simulated step of the motion thread
+    // The thread wakes at most this often in real time, taking as many ticks at once as fit (a
+    // trigger still fires at its own tick): at a high time scale a tick is microseconds of real
+    // time, and 120,000 sleeps a second at 120x took a core from the service it simulates for.
+    double min_wake_real_s = 250e-6;
     double record_period_s = 0.01;      // trajectory sample period (simulated); 0 = every tick
     abb::JointVector start_joints{};    // the robot's joints at start-up [rad]
     std::size_t max_samples = 200'000;  // kept until take_trajectory(), then oldest dropped
