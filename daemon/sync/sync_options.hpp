@@ -38,8 +38,8 @@ struct SyncOptions {
     double lead_s = 0.3;               // metered feed sent ahead of the robot [s of path]
     // The lead is at least this much real time (only a high time scale makes it longer): the
     // host's latencies (the robot I/O poll every 2 ms, a serial round trip) are real milliseconds,
-    // which at the demo's 120x were more than the 2.5 ms that 0.3 s of path came to, and every
-    // path ended with feed still unsent.
+    // which at the demo's 120x were more than the 2.5 ms that 0.3 s of path came to, and
+    // paths ended with feed still unsent (4-5 of the Loop's per run).
     double min_lead_real_s = 0.02;
     double time_scale = 1;             // simulated seconds per real second (simulated cell)
     std::size_t timing_window = 4096;  // latency samples kept per kind for median and p99
