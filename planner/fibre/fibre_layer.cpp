@@ -192,7 +192,8 @@ FibreLayer plan_fibre_layer(const LayerMesh& layer, const std::vector<Eigen::Vec
                                "than the cutter distance)");
     clock.lap();
     out.paths = order_nearest(std::move(paths), Eigen::Vector2d::Zero());
-    out.min_spacing_mm = fibre_spacing_mm(out.paths, options.spacing_mm);
+    if (options.measure_spacing)
+        out.min_spacing_mm = fibre_spacing_mm(out.paths, options.spacing_mm);
     out.timings.connection += clock.lap();
     return out;
 }

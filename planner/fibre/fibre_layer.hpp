@@ -34,6 +34,9 @@ struct FibreLayerOptions {
     // the fibre by the stripes' period.
     bool gap_fill = true;
     bool rings_at_edge = false;  // FibreRegionOptions::rings_at_edge (field-dense: true)
+    // FibreLayer::min_spacing_mm. Off where a caller tries several densities and keeps one (a
+    // fibre budget: about six tries a layer), measuring the one it keeps.
+    bool measure_spacing = true;
 };
 
 struct FibreLayerTimings {  // seconds, the paper's Table 1 columns
@@ -56,7 +59,8 @@ struct FibreLayer {
     // Where they are, for the report per boundary: each link's meeting point (the middle of the
     // two ends it joins) and the first point of each joined ring.
     std::vector<Eigen::Vector2d> join_points, joined_ring_points;
-    // Smallest distance between two different paths, capped at 3W (0: fewer than two paths).
+    // Smallest distance between two different paths, capped at 3W (0: fewer than two paths, or
+    // not measured).
     double min_spacing_mm = 0;
     std::vector<std::string> warnings;  // e.g. "no tension in this layer"
     FibreLayerTimings timings;

@@ -146,6 +146,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
     fibre.cutter_distance_mm = options.cutter_distance_mm;
     fibre.stripes = job.planner.strategy == Strategy::field_dense;
     fibre.rings_at_edge = fibre.stripes;  // dense: no bare W/2 strip along each ringed edge
+    fibre.measure_spacing = false;        // measured once, on the paths a layer keeps
     const std::vector<SelectedFaces> boundary_fibre_faces =
         boundary_fibre_selection(job, field.model, placed);
 
@@ -235,7 +236,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             const FibreJoins joins{r.join_points, r.joined_ring_points};
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.dropped_short_mm = r.dropped_short_mm;
-            w.min_spacing = r.min_spacing_mm;
+            w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
             w.joins = static_cast<int>(r.joins);
             w.rings_joined = static_cast<int>(r.rings_joined);
             w.rings_extended = static_cast<int>(r.rings_extended);
