@@ -184,7 +184,6 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             w.layer.paths = std::move(r.paths);
             w.dropped_short = r.dropped_short;
             w.dropped_short_mm = r.dropped_short_mm;
-            w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
         } else {
             std::vector<std::vector<std::array<int, 2>>> region_edges;
             for (const SelectedFaces& faces : boundary_fibre_faces)
@@ -236,7 +235,6 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
             const FibreJoins joins{r.join_points, r.joined_ring_points};
             w.dropped_short = static_cast<int>(r.dropped_short);
             w.dropped_short_mm = r.dropped_short_mm;
-            w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
             w.joins = static_cast<int>(r.joins);
             w.rings_joined = static_cast<int>(r.rings_joined);
             w.rings_extended = static_cast<int>(r.rings_extended);
@@ -248,6 +246,7 @@ LayerStageResult run_layer_stage(const JobSpec& job, const FieldStageResult& fie
                                                             w.layer.paths, fibre.spacing_mm, joins));
         }
         if (s.head == Head::ccf) {
+            w.min_spacing = fibre_spacing_mm(w.layer.paths, fibre.spacing_mm);
             w.coverage = fibre_coverage(out.outlines[i], w.layer.paths, fibre.spacing_mm);
             w.quality = fibre_quality(out.sections[i], w.layer.paths, v_placed, field.field.sigma_e,
                                       field.v_defined, {.p = job.planner.p});
