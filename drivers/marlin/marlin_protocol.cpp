@@ -102,6 +102,9 @@ void MarlinProtocol::on_line(std::string_view raw, Clock::time_point now) {
     last_rx_ = now;
     const Reply r = parse_reply(raw);
     if (r.kind == ReplyKind::empty) return;
+    // The reset cut an `ok` short: the old firmware had taken that line before it went.
+    if (r.kind == ReplyKind::start && (r.cut_line == "ok" || r.cut_line.starts_with("ok ")))
+        on_line("ok", now);
     if (hooks_.observed) hooks_.observed(r);
 
     if (awaiting_resend_ok_) {

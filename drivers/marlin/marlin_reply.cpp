@@ -150,6 +150,16 @@ Reply parse_reply(std::string_view raw) {
         r.kind = ReplyKind::empty;
         return r;
     }
+    // A reset cuts the line the firmware was sending, and the rest of it never comes: the new
+    // firmware's `start` ends that line (seen in simavr with a reset mid-transmission, as on a real
+    // board). A host action ("//action:start") is not a boot.
+    constexpr std::string_view boot = "start";
+    if (t.size() >= boot.size() && t.substr(t.size() - boot.size()) == boot &&
+        !starts_with_ci(t, "//action:")) {
+        r.kind = ReplyKind::start;
+        r.cut_line = std::string(t.substr(0, t.size() - boot.size()));
+        return r;
+    }
     if (t == "ok" || starts_with_ci(t, "ok ")) {
         r.kind = ReplyKind::ok;
         const std::string_view rest = t.substr(2);
@@ -163,10 +173,6 @@ Reply parse_reply(std::string_view raw) {
     if (starts_with_ci(t, "resend:") || starts_with_ci(t, "rs ")) {
         r.kind = ReplyKind::resend;
         r.line = first_number(starts_with_ci(t, "resend:") ? t.substr(7) : t.substr(2));
-        return r;
-    }
-    if (t == "start") {
-        r.kind = ReplyKind::start;
         return r;
     }
     if (t == "wait") {

@@ -34,7 +34,7 @@ enum class ReplyKind {
     error,         // any other "Error:..." (see is_fatal)
     echo,          // "echo:..."
     temperature,   // " T:21.0 /0.0 B:..." auto-report or heat-up progress
-    start,         // "start": the firmware has just (re)booted
+    start,         // "start": the firmware has just (re)booted; also after a line the reset cut
     action,        // "//action:pause"
     capability,    // "Cap:AUTOREPORT_TEMP:1"
     firmware_info, // "FIRMWARE_NAME:Marlin ..."
@@ -51,6 +51,9 @@ struct Reply {
     bool fatal = false;                   // error: the firmware has halted (kill / stop)
     std::string capability;               // capability: name; action: the action text
     bool capability_on = false;
+    // start: what the firmware had sent of its last line when the reset cut it ("ok T:25.5 /0"
+    // before "start" on one line); empty when `start` came on a line of its own.
+    std::string cut_line;
 };
 
 Reply parse_reply(std::string_view line);

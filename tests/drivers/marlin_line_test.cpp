@@ -67,6 +67,18 @@ TEST(MarlinReply, ParsesResendErrorsAndTheRest) {
     EXPECT_EQ(parse_reply("busy:processing").kind, ReplyKind::busy);
     EXPECT_EQ(parse_reply(std::string("\0\0\xff\0start", 9)).kind, ReplyKind::start);
     EXPECT_EQ(parse_reply("//action:pause").capability, "pause");
+    EXPECT_EQ(parse_reply("//action:start").kind, ReplyKind::action);
+}
+
+// A reset while the firmware is sending cuts its line, and `start` follows on the same line (as
+// gt2560-avr showed with every position of the cut, from "okstart" to a cut temperature report).
+TEST(MarlinReply, AStartAfterALineTheResetCutIsAStart) {
+    const Reply cut_ok = parse_reply("ok T:25.5 /0.0 T0:2start");
+    EXPECT_EQ(cut_ok.kind, ReplyKind::start);
+    EXPECT_EQ(cut_ok.cut_line, "ok T:25.5 /0.0 T0:2");
+    EXPECT_EQ(parse_reply("okstart").kind, ReplyKind::start);
+    EXPECT_EQ(parse_reply("echo:busy: processstart").cut_line, "echo:busy: process");
+    EXPECT_EQ(parse_reply("start").cut_line, "");
     const Reply cap = parse_reply("Cap:EMERGENCY_PARSER:1");
     EXPECT_EQ(cap.capability, "EMERGENCY_PARSER");
     EXPECT_TRUE(cap.capability_on);

@@ -374,6 +374,19 @@ TEST_F(MarlinProtocolTest, ABoardResetMidJobFailsItAndNothingIsRenumbered) {
     EXPECT_THAT(failures_, ElementsAre(LinkFailure::firmware_reset));
 }
 
+// The reset cut the firmware's `ok` for line 13 short: that line was taken (its feed is the
+// board's queue, lost with the reset), and the session fails as on any reset.
+TEST_F(MarlinProtocolTest, ABoardResetThatCutsAnOkShortAcknowledgesItsLineAndFailsTheSession) {
+    start();
+    send("G1 E1.000 F300");
+    send("G1 E2.000 F300");
+    take_written();
+    reply("ok", 0.1);
+    reply("ok T:25.5 /0.0 T0:2start", 0.2);
+    EXPECT_THAT(acked_, ElementsAre(12, 13));
+    EXPECT_THAT(failures_, ElementsAre(LinkFailure::firmware_reset));
+}
+
 TEST_F(MarlinProtocolTest, AResendLoopOnOneLineFails) {
     ProtocolSettings s;
     s.resend_ok = ResendOk::always;
