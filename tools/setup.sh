@@ -5,6 +5,7 @@
 #   tools/setup.sh demo   build (Release), start the simulated cell's service, print the bundled example
 #   tools/setup.sh test   build (sanitizers on) and run the whole test suite
 #   tools/setup.sh build  only install and build (Release)
+#   tools/setup.sh install  only install what any of them needs (.ci/run, before its two builds)
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -133,8 +134,13 @@ case "${1:-demo}" in
             -DFIBRECELL_SANITIZE=ON -DFIBRECELL_BENCH=OFF -DFIBRECELL_SOAK=OFF
         phase "the test suite" run_suite
         ;;
+    install)
+        phase "installing packages" install_missing setup "${packages[@]}" "${build_packages[@]}" \
+            "${test_packages[@]}"
+        phase "the dashboard's packages" install_web_packages
+        ;;
     *)
-        echo "usage: tools/setup.sh [demo|test|build]" >&2
+        echo "usage: tools/setup.sh [demo|test|build|install]" >&2
         exit 2
         ;;
 esac
