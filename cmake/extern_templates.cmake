@@ -7,12 +7,8 @@
 # gains it too. The service's 33 files and batches at -Og with the sanitizers: 513 -> 450 CPU
 # seconds. Not the planner's or the tests' targets: they log little, and fmt's header forced into
 # a planner batch cost more than it saved (docs/building.md).
-function(fibrecell_extern_templates dir)
-    get_directory_property(subdirs DIRECTORY ${dir} SUBDIRECTORIES)
-    foreach(sub IN LISTS subdirs)
-        fibrecell_extern_templates(${sub})
-    endforeach()
-    get_directory_property(targets DIRECTORY ${dir} BUILDSYSTEM_TARGETS)
+function(fibrecell_extern_templates root)
+    fibrecell_targets_under(${root} targets)
     foreach(target IN LISTS targets)
         get_target_property(type ${target} TYPE)
         if(NOT type MATCHES "^(STATIC_LIBRARY|EXECUTABLE)$" OR target STREQUAL "fibrecell_json")
