@@ -40,82 +40,142 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
     return best;
 }
 
+namespace {
+
+// Whether segments ab and cd cross at a point inside both (touching and overlapping are found
+// by the endpoint distances instead).
+bool segments_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                    const Eigen::Vector2d& d) {
+    const auto side = [](const Eigen::Vector2d& o, const Eigen::Vector2d& p,
+                         const Eigen::Vector2d& q) {
+        return (p.x() - o.x()) * (q.y() - o.y()) - (p.y() - o.y()) * (q.x() - o.x());
+    };
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+}
+
+// Distance [mm] between segments ab and cd: 0 where they cross, else the nearest of their ends
+// to the other segment (two segments that do not cross come closest at an end of one of them).
+double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                        const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+    if (segments_cross(a, b, c, d)) return 0;
+    return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                    std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
+// A piece of a path (no longer than the cap): where it lies along the path, and the path's fine
+// points that lie on it.
+struct Piece {
+    int path;
+    double from_mm, to_mm;
+    std::size_t first_point, end_point;  // [first, end) into the path's fine points
+};
+
+// Distance from p (at `s` along a path of length `length`) to the part of a piece of the same
+// path that lies more than along_mm from s along it (around a closed path, the shorter way).
+double far_part(const Eigen::Vector2d& p, double s, const Piece& piece, const TaggedSegment& seg,
+                double along_mm, double length, bool closed) {
+    const double big = std::numeric_limits<double>::infinity();
+    const std::pair<double, double> wanted[2] = {
+        closed ? std::pair{s + along_mm, s + length - along_mm} : std::pair{s + along_mm, big},
+        closed ? std::pair{s - length + along_mm, s - along_mm} : std::pair{-big, s - along_mm}};
+    const double span = piece.to_mm - piece.from_mm;
+    double best = big;
+    for (const auto& [lo, hi] : wanted) {
+        const double a = std::max(lo, piece.from_mm), b = std::min(hi, piece.to_mm);
+        if (!(a < b) || span <= 0) continue;
+        const Eigen::Vector2d d = seg.b - seg.a;
+        best = std::min(best, point_segment_distance(p, seg.a + d * ((a - piece.from_mm) / span),
+                                                     seg.a + d * ((b - piece.from_mm) / span)));
+    }
+    return best;
+}
+
+// A path's points every `step` along it, and how far along it each lies.
+struct FinePoints {
+    std::vector<Eigen::Vector2d> points;
+    std::vector<double> at;
+    double length = 0;
+};
+
+FinePoints fine_points(const std::vector<Eigen::Vector2d>& path, bool closed, double step) {
+    FinePoints out{resampled(path, closed, step), {}, 0};
+    const auto& pts = out.points;
+    double s = 0;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+        if (k > 0) s += (pts[k] - pts[k - 1]).norm();
+        out.at.push_back(s);
+    }
+    out.length = closed && pts.size() > 2 ? s + (pts.front() - pts.back()).norm() : s;
+    return out;
+}
+
+}  // namespace
+
 double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& given,
                          const std::vector<char>& closed, double along_mm, double cap) {
-    // Points every along/32 (W/8 at 4W) find a close pair within one path to W/16. The segments
-    // they are measured to need no such density (the distance to a segment is exact), only to
-    // span at most a grid cell or two: pieces no longer than the cap.
-    std::vector<std::vector<Eigen::Vector2d>> paths;
-    paths.reserve(given.size());
-    for (std::size_t i = 0; i < given.size(); ++i)
-        paths.push_back(resampled(given[i], closed[i], along_mm / 32));
-    // Segments tagged by their index in `segs`, which knows the path and where along it they lie.
-    struct Piece {
-        int path;
-        double from_mm, to_mm;  // along the path
-    };
-    std::vector<Piece> segs;
-    std::vector<std::vector<double>> at(paths.size());  // along-path position of each point
-    std::vector<double> length(paths.size(), 0);
-    SegmentGrid grid(cap);
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        const auto& pts = paths[i];
-        double s = 0;
-        for (std::size_t k = 0; k < pts.size(); ++k) {
-            if (k > 0) s += (pts[k] - pts[k - 1]).norm();
-            at[i].push_back(s);
-        }
-        const bool loop = closed[i] && pts.size() > 2;
-        length[i] = loop ? s + (pts.front() - pts.back()).norm() : s;
-
+    // The paths in pieces no longer than the cap, each spanning a grid cell or two, and their
+    // points every along/32 (W/8 at 4W), which find a close pair within one path to W/16.
+    std::vector<FinePoints> fine;
+    fine.reserve(given.size());
+    std::vector<Piece> pieces;
+    SegmentGrid grid(cap);  // the pieces, tagged by their index in `pieces`
+    for (std::size_t i = 0; i < given.size(); ++i) {
+        fine.push_back(fine_points(given[i], closed[i], along_mm / 32));
+        const FinePoints& f = fine.back();
         const std::vector<Eigen::Vector2d> coarse = resampled(given[i], closed[i], cap);
-        const bool coarse_loop = closed[i] && coarse.size() > 2;
+        const bool loop = closed[i] && coarse.size() > 2;
+        // A lone point is a piece of no length.
         const std::size_t count =
-            coarse_loop ? coarse.size() : (coarse.empty() ? 0 : coarse.size() - 1);
+            loop ? coarse.size() : (coarse.size() == 1 ? 1 : (coarse.empty() ? 0 : coarse.size() - 1));
         double from = 0;
+        std::size_t point = 0;
         for (std::size_t k = 0; k < count; ++k) {
             const Eigen::Vector2d& a = coarse[k];
             const Eigen::Vector2d& b = coarse[(k + 1) % coarse.size()];
             const double to = from + (b - a).norm();
-            grid.insert({a, b, static_cast<int>(segs.size())});
-            segs.push_back({static_cast<int>(i), from, to});
+            const std::size_t first = point;
+            while (point < f.points.size() && (k + 1 == count || f.at[point] < to)) ++point;
+            grid.insert({a, b, static_cast<int>(pieces.size())});
+            pieces.push_back({static_cast<int>(i), from, to, first, point});
             from = to;
         }
     }
-    // Distance from p (at `s` along path i) to the part of a segment of the same path that lies
-    // more than along_mm from s along the path (around a closed path, the shorter way).
-    const auto far_part = [&](const Eigen::Vector2d& p, double s, const Piece& piece,
-                              const TaggedSegment& seg) {
-        const std::size_t i = static_cast<std::size_t>(piece.path);
-        const double big = std::numeric_limits<double>::infinity();
-        const double l = length[i];
-        const std::pair<double, double> wanted[2] = {
-            closed[i] ? std::pair{s + along_mm, s + l - along_mm} : std::pair{s + along_mm, big},
-            closed[i] ? std::pair{s - l + along_mm, s - along_mm} : std::pair{-big, s - along_mm}};
-        const double span = piece.to_mm - piece.from_mm;
-        double best = big;
-        for (const auto& [lo, hi] : wanted) {
-            const double a = std::max(lo, piece.from_mm), b = std::min(hi, piece.to_mm);
-            if (!(a < b) || span <= 0) continue;
-            const Eigen::Vector2d d = seg.b - seg.a;
-            best =
-                std::min(best, point_segment_distance(p, seg.a + d * ((a - piece.from_mm) / span),
-                                                      seg.a + d * ((b - piece.from_mm) / span)));
-        }
-        return best;
-    };
+
+    // Each piece against the pieces within a cell of it, once per pair and direction. Between
+    // paths the distance of the two pieces is exact, and it is what points every W/8 on them
+    // would find: two polylines that do not cross come closest at a vertex of one of them. Within
+    // a path only the part of the other piece more than along_mm away along it counts, measured
+    // from each of this piece's points; the pieces' own distance bounds that from below, so a
+    // pair that cannot beat the nearest found so far is passed over.
+    std::vector<std::size_t> seen(pieces.size(), pieces.size());
     double best = cap;
-    for (std::size_t i = 0; i < paths.size(); ++i)
-        for (std::size_t k = 0; k < paths[i].size(); ++k) {
-            cancellation_point();
-            const Eigen::Vector2d& p = paths[i][k];
-            grid.around(p, [&](const TaggedSegment& seg) {
-                const Piece& piece = segs[static_cast<std::size_t>(seg.tag)];
-                best = std::min(best, piece.path == static_cast<int>(i)
-                                          ? far_part(p, at[i][k], piece, seg)
-                                          : point_segment_distance(p, seg.a, seg.b));
-            });
-        }
+    for (std::size_t pi = 0; pi < pieces.size(); ++pi) {
+        cancellation_point();
+        const Piece& piece = pieces[pi];
+        const TaggedSegment& ps = grid.segment(pi);
+        const FinePoints& f = fine[static_cast<std::size_t>(piece.path)];
+        grid.around_box(ps.a.cwiseMin(ps.b), ps.a.cwiseMax(ps.b), [&](const TaggedSegment& qs) {
+            const std::size_t qi = static_cast<std::size_t>(qs.tag);
+            if (qi == pi || seen[qi] == pi) return;  // a piece has no far part of itself
+            seen[qi] = pi;
+            const Piece& other = pieces[qi];
+            const bool same_path = other.path == piece.path;
+            // Pieces of one path nearer along it than along_mm at their farthest: nothing far.
+            if (same_path && std::max(other.to_mm - piece.from_mm, piece.to_mm - other.from_mm) <=
+                                 along_mm)
+                return;
+            const double d = segment_distance(ps.a, ps.b, qs.a, qs.b);
+            if (d >= best) return;
+            if (!same_path) {
+                best = d;
+                return;
+            }
+            const bool loop = closed[static_cast<std::size_t>(piece.path)] != 0;
+            for (std::size_t k = piece.first_point; k < piece.end_point; ++k)
+                best = std::min(best, far_part(f.points[k], f.at[k], other, qs, along_mm,
+                                               f.length, loop));
+        });
+    }
     return best;
 }
 

@@ -21,8 +21,9 @@ double min_distance_between_paths(const std::vector<std::vector<Eigen::Vector2d>
 
 // The spacing a finished fibre layer actually has: the minimal distance [mm] between points of
 // different paths, and between points of one path more than `along_mm` apart along it (a
-// hairpin, a cusp, a join that comes back; around a closed path the shorter way), capped. Found
-// to within along_mm/64 on points every along_mm/32.
+// hairpin, a cusp, a join that comes back; around a closed path the shorter way), capped.
+// Between paths exact (0 where two cross); within a path found to within along_mm/64 on points
+// every along_mm/32.
 double min_fibre_spacing(const std::vector<std::vector<Eigen::Vector2d>>& paths,
                          const std::vector<char>& closed, double along_mm, double cap);
 

@@ -36,6 +36,9 @@ class SegmentGrid {
     // Every segment of a polyline (and its closing segment when closed), with one tag.
     void insert_polyline(const std::vector<Eigen::Vector2d>& points, bool closed, int tag);
 
+    // The id-th segment inserted.
+    const TaggedSegment& segment(std::size_t id) const { return segments_[id]; }
+
     // Calls visit(segment) for the segments in the 3 x 3 cells around p (a segment may be
     // visited more than once).
     template <class Visit>
@@ -43,6 +46,18 @@ class SegmentGrid {
         const auto [cx, cy] = cell_of(p);
         for (long x = cx - 1; x <= cx + 1; ++x)
             for (long y = cy - 1; y <= cy + 1; ++y)
+                if (auto it = cells_.find(key(x, y)); it != cells_.end())
+                    for (int id : it->second) visit(segments_[id]);
+    }
+
+    // Calls visit(segment) for the segments in the cells around the box [lo, hi] (one cell
+    // beyond it on every side: everything within a cell of any point in the box).
+    template <class Visit>
+    void around_box(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, Visit visit) const {
+        const auto [x0, y0] = cell_of(lo);
+        const auto [x1, y1] = cell_of(hi);
+        for (long x = x0 - 1; x <= x1 + 1; ++x)
+            for (long y = y0 - 1; y <= y1 + 1; ++y)
                 if (auto it = cells_.find(key(x, y)); it != cells_.end())
                     for (int id : it->second) visit(segments_[id]);
     }

@@ -95,6 +95,13 @@ TEST(CurveSpacing, FibreSpacingCountsAPathComingBackNearItself) {
     // Different paths count at any distance along them.
     const std::vector<P> a = {{0, 0}, {10, 0}}, b = {{0, 0.8}, {10, 0.8}};
     EXPECT_NEAR(min_fibre_spacing({a, b}, {0, 0}, 4.0, 3.0), 0.8, 1e-12);
+    // Two paths that cross far from their vertices: nothing between them.
+    const std::vector<P> up = {{0, -5}, {10, 5}}, down = {{0, 5}, {10, -5}};
+    EXPECT_EQ(min_fibre_spacing({up, down}, {0, 0}, 4.0, 3.0), 0.0);
+    // A piece's end against the middle of a long segment of another path, beyond the cap's
+    // first cell.
+    const std::vector<P> longer = {{-20, 1.1}, {20, 1.1}}, tip = {{0, 3}, {0, 2.2}};
+    EXPECT_NEAR(min_fibre_spacing({longer, tip}, {0, 0}, 4.0, 3.0), 1.1, 1e-12);
 }
 
 // What a layer reports: the same measure, found near W first and farther only when needed.

@@ -65,7 +65,8 @@ struct Spacing {
     Eigen::Vector2d between_at{0, 0}, within_at{0, 0};         // where they are
 };
 
-// Smallest distances between sample points (every W/4) of a layer's fibre, below 2W.
+// Smallest distances between sample points (every W/4) of a layer's fibre, where they are W or
+// less (a grid of W-wide cells: any two points that near are in neighbouring cells).
 Spacing measure_spacing(const std::vector<Toolpath>& paths, double w) {
     struct Sample {
         Eigen::Vector2d p;
@@ -73,7 +74,7 @@ Spacing measure_spacing(const std::vector<Toolpath>& paths, double w) {
         double along;
     };
     std::vector<double> length;
-    HashGrid<Sample> grid{2 * w, {}};
+    HashGrid<Sample> grid{w, {}};
     std::vector<Sample> all;
     for (std::size_t i = 0; i < paths.size(); ++i) {
         const std::vector<Eigen::Vector2d> pts = sample(paths[i], w / 4);
