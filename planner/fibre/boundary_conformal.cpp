@@ -19,8 +19,9 @@ struct CutEnd {
 // open piece (a closed curve wholly inside stays closed); `cut` collects the ends of open pieces.
 void clip_to_region(const std::vector<Polyline>& stress, const std::vector<Polygon>& region,
                     std::vector<Polyline>& pieces, std::vector<PieceEnd>& cut) {
+    const RegionClip clip(region);
     for (const Polyline& curve : stress) {
-        ClippedRuns clipped = clip_polyline(region, curve.points, curve.closed);
+        ClippedRuns clipped = clip(curve.points, curve.closed);
         for (auto& run : clipped.runs) {
             const int id = static_cast<int>(pieces.size());
             pieces.push_back({std::move(run), clipped.closed_inside, curve.level});

@@ -27,6 +27,26 @@ inline double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vect
     return (a + t * ab - p).norm();
 }
 
+// Whether segments ab and cd cross at a point inside both (touching and overlapping are found
+// by the ends' distances instead).
+inline bool segments_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                           const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+    const auto side = [](const Eigen::Vector2d& o, const Eigen::Vector2d& p,
+                         const Eigen::Vector2d& q) {
+        return (p.x() - o.x()) * (q.y() - o.y()) - (p.y() - o.y()) * (q.x() - o.x());
+    };
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+}
+
+// Distance [mm] between segments ab and cd: 0 where they cross, else the nearest of their ends
+// to the other segment (two segments that do not cross come closest at an end of one of them).
+inline double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+    if (segments_cross(a, b, c, d)) return 0;
+    return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                    std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
 class SegmentGrid {
   public:
     // cell_mm: the largest distance a query needs to see; nearer segments are always visited.

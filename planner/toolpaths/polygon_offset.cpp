@@ -1,5 +1,7 @@
 #include "planner/toolpaths/polygon_offset.hpp"
 
+#include "planner/fibre/polyline_resample.hpp"
+
 #include <polyclipping/clipper.hpp>
 
 #include <algorithm>
@@ -271,12 +273,57 @@ ClippedRuns clip_polyline(const std::vector<Polygon>& region,
     return out;
 }
 
+namespace {
+
+// How near [mm] a line may come to a region's edge and still be taken as wholly on one side of
+// it without Clipper (whose rounding is 1e-5 mm).
+constexpr double clear_of_edge_mm = 1e-6;
+
+}  // namespace
+
 bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
                            const Eigen::Vector2d& b) {
+    if ((b - a).norm() <= 1e-4) return true;
+    // Clear of every edge, the segment is wholly on one side: no Clipper run over the region.
+    bool meets = false;
+    for (const Polygon& loop : region)
+        for (std::size_t i = 0; i < loop.size() && !meets; ++i)
+            meets = segment_distance(a, b, loop[i], loop[(i + 1) % loop.size()]) <= clear_of_edge_mm;
+    if (!meets) return inside_region(region, a);
     double kept = 0;
     for (const auto& run : clip_polyline(region, {a, b}, false).runs)
         for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
     return kept >= (b - a).norm() - 1e-4;
+}
+
+RegionClip::RegionClip(std::vector<Polygon> region) : region_(std::move(region)), outline_(2.0) {
+    to_clipper(region_);  // the same errors for a bad region as clip_polyline's
+    for (std::size_t i = 0; i < region_.size(); ++i)
+        outline_.insert_polyline(resampled(region_[i], true, 2.0), true, static_cast<int>(i));
+}
+
+bool RegionClip::meets_outline(const std::vector<Eigen::Vector2d>& line, bool closed) const {
+    const std::size_t n = line.size();
+    const std::size_t segments = closed && n > 2 ? n : n - 1;
+    bool meets = false;
+    for (std::size_t i = 0; i < segments && !meets; ++i) {
+        const Eigen::Vector2d& a = line[i];
+        const Eigen::Vector2d& b = line[(i + 1) % n];
+        outline_.around_box(a.cwiseMin(b), a.cwiseMax(b), [&](const TaggedSegment& edge) {
+            meets = meets || segment_distance(a, b, edge.a, edge.b) <= clear_of_edge_mm;
+        });
+    }
+    return meets;
+}
+
+ClippedRuns RegionClip::operator()(const std::vector<Eigen::Vector2d>& line, bool closed) const {
+    if (line.size() < 2 || region_.empty() || meets_outline(line, closed))
+        return clip_polyline(region_, line, closed);
+    ClippedRuns out;
+    if (!inside_region(region_, line.front())) return out;
+    out.runs.push_back(line);
+    out.closed_inside = closed;
+    return out;
 }
 
 }  // namespace fibrecell::planner

@@ -3,6 +3,7 @@
 // Clipper's integer coordinates (1 unit = 1e-5 mm: a 300 mm bed spans 3e7 units, far inside
 // Clipper's 64-bit range, and rounding stays below 1e-5 mm).
 
+#include "planner/fibre/segment_grid.hpp"
 #include "planner/layers/layer_mesh.hpp"
 
 #include <array>
@@ -68,5 +69,20 @@ struct ClippedRuns {
 };
 ClippedRuns clip_polyline(const std::vector<Polygon>& region,
                           const std::vector<Eigen::Vector2d>& line, bool closed);
+
+// clip_polyline for many lines against one region. A line that comes nowhere near the region's
+// outline (within 1e-6 mm) is wholly inside, and comes back as it is, or wholly outside: only
+// the lines that meet the outline are clipped by Clipper, each against the whole region.
+class RegionClip {
+  public:
+    explicit RegionClip(std::vector<Polygon> region);
+    ClippedRuns operator()(const std::vector<Eigen::Vector2d>& line, bool closed) const;
+
+  private:
+    bool meets_outline(const std::vector<Eigen::Vector2d>& line, bool closed) const;
+
+    std::vector<Polygon> region_;
+    SegmentGrid outline_;  // the region's edges in pieces of at most a cell
+};
 
 }  // namespace fibrecell::planner

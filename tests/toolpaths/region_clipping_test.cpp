@@ -96,5 +96,42 @@ TEST(RegionClipping, ClosedLineKeepsItsRunThroughTheStart) {
     EXPECT_TRUE(clip_polyline(region, {{20, 20}, {30, 30}}, false).runs.empty());
 }
 
+// Many lines against one region: lines clear of the outline come back whole or not at all
+// without Clipper, and every line's runs are clip_polyline's, to its rounding.
+TEST(RegionClipping, ARegionClipGivesClipPolylinesRunsForEveryLine) {
+    const std::vector<Polygon> region = {rectangle(0, 0, 30, 20), circle_hole({15, 10}, 4, 64)};
+    const RegionClip clip(region);
+    const std::vector<std::pair<std::vector<Eigen::Vector2d>, bool>> lines = {
+        {{{2, 2}, {8, 3}, {12, 2}}, false},                 // inside, clear of every edge
+        {{{2, 2}, {8, 2}, {8, 5}, {2, 5}}, true},           // a closed loop inside
+        {{{40, 2}, {50, 3}}, false},                        // outside
+        {{{13, 10}, {17, 10}}, false},                      // in the hole
+        {{{-5, 10}, {35, 10}}, false},                      // across the part and its hole
+        {{{5, 1}, {35, 1}, {35, 3}, {5, 3}}, true},         // a loop across the right edge
+        {{{0, 5}, {10, 5}}, false},                         // from a point on the outline
+        {{{5, 0}, {25, 0}}, false},                         // along an edge
+        {{{2, 2}, {30 - 1e-7, 2}, {2, 3}}, false},          // touching the edge within 1e-7
+    };
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const auto& [line, closed] = lines[i];
+        const ClippedRuns want = clip_polyline(region, line, closed);
+        const ClippedRuns got = clip(line, closed);
+        ASSERT_EQ(got.runs.size(), want.runs.size()) << "line " << i;
+        EXPECT_EQ(got.closed_inside, want.closed_inside) << "line " << i;
+        for (std::size_t r = 0; r < want.runs.size(); ++r) {
+            ASSERT_EQ(got.runs[r].size(), want.runs[r].size()) << "line " << i << " run " << r;
+            for (std::size_t k = 0; k < want.runs[r].size(); ++k)
+                EXPECT_LT((got.runs[r][k] - want.runs[r][k]).norm(), 1e-5)
+                    << "line " << i << " run " << r << " point " << k;
+        }
+    }
+    // Segments: a chord across the hole is not inside, one beside it is, a point always is.
+    EXPECT_FALSE(segment_inside_region(region, {5, 10}, {25, 10}));
+    EXPECT_TRUE(segment_inside_region(region, {5, 2}, {25, 2}));
+    EXPECT_FALSE(segment_inside_region(region, {25, 2}, {35, 2}));
+    EXPECT_TRUE(segment_inside_region(region, {25, 2}, {30, 2}));  // ends on the edge
+    EXPECT_TRUE(segment_inside_region(region, {50, 50}, {50, 50}));
+}
+
 }  // namespace
 }  // namespace fibrecell::planner
