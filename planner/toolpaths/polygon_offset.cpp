@@ -279,11 +279,15 @@ namespace {
 // it without Clipper (whose rounding is 1e-5 mm).
 constexpr double clear_of_edge_mm = 1e-6;
 
+// RegionClip's grid of the outline's edges: its cell, and the longest piece an edge is cut into,
+// so that a long edge sits in a few cells, not in every cell of its bounding box.
+constexpr double outline_cell_mm = 2.0;
+
 }  // namespace
 
 bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
                            const Eigen::Vector2d& b) {
-    if ((b - a).norm() <= 1e-4) return true;
+    if ((b - a).norm() <= 1e-4) return true;  // within the tolerance below, whatever it crosses
     // Clear of every edge, the segment is wholly on one side: no Clipper run over the region.
     bool meets = false;
     for (const Polygon& loop : region)
@@ -296,10 +300,12 @@ bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vect
     return kept >= (b - a).norm() - 1e-4;
 }
 
-RegionClip::RegionClip(std::vector<Polygon> region) : region_(std::move(region)), outline_(2.0) {
+RegionClip::RegionClip(std::vector<Polygon> region)
+    : region_(std::move(region)), outline_(outline_cell_mm) {
     to_clipper(region_);  // the same errors for a bad region as clip_polyline's
     for (std::size_t i = 0; i < region_.size(); ++i)
-        outline_.insert_polyline(resampled(region_[i], true, 2.0), true, static_cast<int>(i));
+        outline_.insert_polyline(resampled(region_[i], true, outline_cell_mm), true,
+                                 static_cast<int>(i));
 }
 
 bool RegionClip::meets_outline(const std::vector<Eigen::Vector2d>& line, bool closed) const {
