@@ -31,11 +31,10 @@ double length_of(const std::vector<Eigen::Vector2d>& pts) {
 LaidFibre::LaidFibre(double w, double tolerance_mm) : w_(w), keep_(w - tolerance_mm), grid_(w) {}
 
 bool LaidFibre::near(const SegmentGrid& grid, const Eigen::Vector2d& p) const {
-    bool found = false;
-    grid.around(p, [&](const TaggedSegment& s) {
-        found = found || point_segment_distance(p, s.a, s.b) < keep_;
+    const double keep2 = keep_ * keep_;
+    return grid.any_around(p, [&](const TaggedSegment& s) {
+        return point_segment_distance_squared(p, s.a, s.b) < keep2;
     });
-    return found;
 }
 
 void LaidFibre::commit(const LaidPiece& piece) {

@@ -19,12 +19,16 @@ struct TaggedSegment {
 
 // Distance [mm] from p to the segment ab. Inline: the planner's nearness queries call it for
 // every segment they visit.
-inline double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                                     const Eigen::Vector2d& b) {
+inline double point_segment_distance_squared(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                             const Eigen::Vector2d& b) {
     const Eigen::Vector2d ab = b - a;
     const double len2 = ab.squaredNorm();
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).norm();
+    return (a + t * ab - p).squaredNorm();
+}
+inline double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                     const Eigen::Vector2d& b) {
+    return std::sqrt(point_segment_distance_squared(p, a, b));
 }
 
 // Whether segments ab and cd cross at a point inside both (touching and overlapping are found
@@ -68,6 +72,19 @@ class SegmentGrid {
             for (long y = cy - 1; y <= cy + 1; ++y)
                 if (auto it = cells_.find(key(x, y)); it != cells_.end())
                     for (int id : it->second) visit(segments_[id]);
+    }
+
+    // Whether near(segment) holds for any segment in the 3 x 3 cells around p: stops at the
+    // first that does.
+    template <class Near>
+    bool any_around(const Eigen::Vector2d& p, Near near) const {
+        const auto [cx, cy] = cell_of(p);
+        for (long x = cx - 1; x <= cx + 1; ++x)
+            for (long y = cy - 1; y <= cy + 1; ++y)
+                if (auto it = cells_.find(key(x, y)); it != cells_.end())
+                    for (int id : it->second)
+                        if (near(segments_[id])) return true;
+        return false;
     }
 
     // Calls visit(segment) for the segments in the cells around the box [lo, hi] (one cell
