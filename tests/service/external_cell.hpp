@@ -80,8 +80,8 @@ class ExternalCell {
         replace("robot_io: {stable_reads: 1}",
                 "robot_io: {stable_reads: 1, port: " + std::to_string(modbus_port_) + "}");
         replace("residency_s: 0.5}", "residency_s: 0.5, devices: external}");
-        return text + "extruder: {link: {port: " + tty_.string() + "}}\n" +
-               "rws: {port: " + std::to_string(rws_port_) + "}\n" + extra;
+        replace("extruder: {", "extruder: {link: {port: " + tty_.string() + "}, ");
+        return text + "rws: {port: " + std::to_string(rws_port_) + "}\n" + extra;
     }
 
     // A fault of the mock board ("reset", "unplug", "replug", ...: mock-gt2560's stdin

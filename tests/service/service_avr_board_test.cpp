@@ -36,16 +36,16 @@ class AvrBoardPrint : public ServiceTest {
             GTEST_SKIP() << "gt2560-avr or the test firmware is not built (libsimavr-dev, gcc-avr)";
         ServiceTest::SetUp();
         fs::copy(fibrecell::test::source_path("examples/strip"), dir_ / "strip");
-        // Twice the example's print speeds (CF 10 mm/s is still a speed fibre heads lay at): the
-        // same events in about two thirds of the time; this test sets the suite's floor.
+        // Three and two times the example's print speeds (PLA 36 mm/s, CF 10 mm/s: still speeds
+        // the heads lay at): the same events in about half the time; this test sets the suite's
+        // floor.
         std::ofstream(dir_ / "strip/strip.job.yaml", std::ios::app)
-            << "\nprocess:\n  pla: {speed_mm_s: 24}\n  ccf: {speed_mm_s: 10}\n";
-        // Real-time heaters, a little quicker than a real hotend's: 25 -> 250 C in about 12 s.
-        std::string text = read_file(write_config(
-            "extruder: {link: {port: " + tty().string() + "}}\n", /*time_scale=*/1));
+            << "\nprocess:\n  pla: {speed_mm_s: 36}\n  ccf: {speed_mm_s: 10}\n";
+        // Real-time heaters, quicker than a real hotend's: 25 -> 250 C in about 6 s.
+        std::string text = with_board_port(read_file(write_config("", /*time_scale=*/1)), tty());
         const std::string from = "residency_s: 0.5}";
         text.replace(text.find(from), from.size(),
-                     "residency_s: 0.5, board: external, heat_capacity_j_per_k: 2}");
+                     "residency_s: 0.5, board: external, heat_capacity_j_per_k: 1}");
         std::ofstream(dir_ / "cell.yaml") << text;
     }
 
@@ -191,8 +191,8 @@ TEST_F(AvrBoardPrint, TheStripPrintsOnAFaultyWireAndAcrossAnMcuResetWithTheFeeds
 // a second, exit 1. After a reset of the board the job starts again.
 TEST_F(AvrBoardPrint, AWatchdogHaltDuringHeatUpRefusesTheStartWithTheFirmwaresErrorAndTheJobStaysStartable) {
     std::string text = read_file(dir_ / "cell.yaml");
-    const std::string from = "heat_capacity_j_per_k: 2}";
-    text.replace(text.find(from), from.size(), "heat_capacity_j_per_k: 2, heater_power_w: 0.05}");
+    const std::string from = "heat_capacity_j_per_k: 1}";
+    text.replace(text.find(from), from.size(), "heat_capacity_j_per_k: 1, heater_power_w: 0.05}");
     std::ofstream(dir_ / "cell.yaml") << text;
     start_board();
     start_service(dir_ / "cell.yaml");

@@ -153,9 +153,9 @@ TEST_F(ServiceTest, SubmitStartWatchFollowsTheJobToItsOutcome) {
 // planned with the reason: `submit --start --watch` ends there, with the reason and exit 1,
 // instead of watching a planned job for ever.
 TEST_F(ServiceTest, SubmitStartWatchEndsWhenTheStartIsRefused) {
-    std::string text = read_file(write_config(
-        "extruder: {link: {port: " + (dir_ / "no-such-tty").string() + "}}\n"
-        "print: {connect_timeout_s: 1}\n", /*time_scale=*/1));  // an external board: real time
+    std::string text = with_board_port(
+        read_file(write_config("print: {connect_timeout_s: 1}\n", /*time_scale=*/1)),  // an external board: real time
+        dir_ / "no-such-tty");
     const std::string from = "residency_s: 0.5}";
     text.replace(text.find(from), from.size(), "residency_s: 0.5, board: external}");
     std::ofstream(dir_ / "cell.yaml") << text;

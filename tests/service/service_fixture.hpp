@@ -84,11 +84,12 @@ class ServiceTest : public ::testing::Test {
         for (auto& s : stress) s(0, 0) = 30.0;
         fibrecell::test::write_vtk_file(dir_ / "jobs/bar.vtk", mesh, {.stress = &stress});
         fibrecell::test::write_vtk_file(dir_ / "jobs/bare.vtk", mesh, {});
-        // PLA at 24 mm/s (the default 12 is for the fibre cell's first layers): half the
-        // robot time of the matrix, which is most of each print of the service tests.
+        // PLA at 24 mm/s and fibre at 10 (the defaults 12 and 5 are for the fibre cell's first
+        // layers; 10 mm/s is still a speed fibre heads lay at): half the robot time of each
+        // print of the service tests.
         std::ofstream(dir_ / "jobs/bar.job.yaml")
             << "name: bar\nmodel:\n  mesh: bar.vtk\nplacement:\n  position_mm: [150, 150]\n"
-               "process:\n  pla: {speed_mm_s: 24}\n";
+               "process:\n  pla: {speed_mm_s: 24}\n  ccf: {speed_mm_s: 10}\n";
         std::ofstream(dir_ / "jobs/broken.job.yaml")
             << "name: broken\nmodel:\n  mesh: bare.vtk\nplacement:\n  position_mm: [150, 150]\n";
     }
@@ -119,8 +120,18 @@ class ServiceTest : public ::testing::Test {
                          << "  max_request_bytes: 4194304\n"
                          << "  tcp: {enabled: true, port: 0, token: test-token-0123456789}\n"
                          << "jobs: {planner_threads: 1}\n"
+                         // Fibre threaded at 20 mm/s (the default 5 is a cautious first
+                         // threading): each fibre start holds the robot a quarter as long.
+                         << "extruder: {ccf: {thread_speed_mm_s: 20}}\n"
                          << extra;
         return p;
+    }
+
+    // The cell YAML `text` (write_config's) with the extruder board on `port`.
+    static std::string with_board_port(std::string text, const fs::path& port) {
+        const std::string from = "extruder: {";
+        text.replace(text.find(from), from.size(), from + "link: {port: " + port.string() + "}, ");
+        return text;
     }
 
     void start_service(const fs::path& config) {

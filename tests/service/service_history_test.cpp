@@ -79,7 +79,7 @@ TEST_F(ServiceTest, TheHistoryRecordsWhatTheBoardFedForACompletedAnAbortedAndAnI
     const std::string formula = "=cmd|' /C calc'!A0, \"x\"";
     std::ofstream(dir_ / "jobs/formula.job.yaml")
         << "name: \"=cmd|' /C calc'!A0, \\\"x\\\"\"\nmodel:\n  mesh: bar.vtk\n"
-           "placement:\n  position_mm: [150, 150]\nprocess:\n  pla: {speed_mm_s: 24}\n";
+           "placement:\n  position_mm: [150, 150]\nprocess:\n  pla: {speed_mm_s: 24}\n  ccf: {speed_mm_s: 10}\n";
     start_service(dir_ / "cell.yaml");
     const auto board = [&] { return devices.board_fed(); };
     const auto job_journal = [&](std::int64_t id) {
