@@ -67,7 +67,7 @@ std::vector<Link> join_close_ends(const std::vector<Polyline>& pieces,
         const PieceEnd& eb = free_ends[p.b];
         const Eigen::Vector2d a = end_point(pieces, ea), b = end_point(pieces, eb);
         // The straight link's inner points must keep clear of every other curve.
-        bool clear = !options.keep_inside || segment_inside_region(*options.keep_inside, a, b);
+        bool clear = !options.keep_inside || options.keep_inside->holds_segment(a, b);
         for (double t : {0.25, 0.5, 0.75}) {
             const Eigen::Vector2d x = a + t * (b - a);
             grid.around(x, [&](const TaggedSegment& s) {

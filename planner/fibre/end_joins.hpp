@@ -5,6 +5,7 @@
 #include "planner/fibre/isocurves.hpp"
 #include "planner/fibre/path_chains.hpp"
 #include "planner/layers/layer_mesh.hpp"
+#include "planner/toolpaths/polygon_offset.hpp"
 
 #include <vector>
 
@@ -15,7 +16,7 @@ struct EndJoinOptions {
     double clearance_mm = 1.0;  // a link keeps this far from every third curve (W)
     // Where a link may run (loops, even-odd; null: anywhere): a link across a hole or a notch
     // of the part is not made.
-    const std::vector<Polygon>* keep_inside = nullptr;
+    const RegionClip* keep_inside = nullptr;
 };
 
 // pieces: open (or closed, ignored) curves; taken: links already made (their ends are not free);

@@ -52,7 +52,7 @@ void connect_piece(const FibreRegion& region, std::vector<Polyline> curves,
     BoundaryConformal b = conform_to_boundary(region, curves, {.spacing_mm = w});
     // Links may run along the region's edge, where the curve ends lie: grown by a hair, the
     // region keeps them in.
-    const std::vector<Polygon> link_region = offset_region(region.stress, 1e-4);
+    const RegionClip link_region(offset_region(region.stress, 1e-4));
     std::vector<Link> close =
         join_close_ends(b.pieces, b.links, b.boundary,
                         {.max_gap_mm = 2 * w, .clearance_mm = w, .keep_inside = &link_region});

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace fibrecell::planner {
 namespace {
@@ -82,6 +83,7 @@ std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polylin
     const double w = options.spacing_mm;
     const double reach = options.reach_mm > 0 ? options.reach_mm : 3 * w;
     std::size_t attached = 0;
+    std::optional<RegionClip> inside_part;  // made when a ring is short enough to attach
     for (std::size_t r = 0; r < rings.size();) {
         if (length_of(rings[r]) >= options.cutter_distance_mm || rings[r].points.size() < 2) {
             ++r;
@@ -101,7 +103,8 @@ std::size_t attach_short_rings(std::vector<Polyline>& paths, std::vector<Polylin
             const Eigen::Vector2d e = fibre.back();
             for (const auto& order : ring_orders(rings[r], e, 1.5 * w)) {
                 const Eigen::Vector2d q = order.front();
-                if (!segment_inside_region(part, e, q)) continue;
+                if (!inside_part) inside_part.emplace(part);
+                if (!inside_part->holds_segment(e, q)) continue;
                 bool clear = true;
                 const int n = std::max(1, static_cast<int>(std::ceil((q - e).norm() / (w / 4))));
                 for (int k = 1; k < n && clear; ++k) {

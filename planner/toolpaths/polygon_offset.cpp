@@ -285,21 +285,6 @@ constexpr double outline_cell_mm = 2.0;
 
 }  // namespace
 
-bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
-                           const Eigen::Vector2d& b) {
-    if ((b - a).norm() <= 1e-4) return true;  // within the tolerance below, whatever it crosses
-    // Clear of every edge, the segment is wholly on one side: no Clipper run over the region.
-    bool meets = false;
-    for (const Polygon& loop : region)
-        for (std::size_t i = 0; i < loop.size() && !meets; ++i)
-            meets = segment_distance(a, b, loop[i], loop[(i + 1) % loop.size()]) <= clear_of_edge_mm;
-    if (!meets) return inside_region(region, a);
-    double kept = 0;
-    for (const auto& run : clip_polyline(region, {a, b}, false).runs)
-        for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
-    return kept >= (b - a).norm() - 1e-4;
-}
-
 RegionClip::RegionClip(std::vector<Polygon> region)
     : region_(std::move(region)), outline_(outline_cell_mm) {
     to_clipper(region_);  // the same errors for a bad region as clip_polyline's
@@ -320,6 +305,16 @@ bool RegionClip::meets_outline(const std::vector<Eigen::Vector2d>& line, bool cl
         });
     }
     return meets;
+}
+
+bool RegionClip::holds_segment(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+    if ((b - a).norm() <= 1e-4) return true;  // within the tolerance below, whatever it crosses
+    // Clear of every edge, the segment is wholly on one side: no Clipper run over the region.
+    if (!meets_outline({a, b}, false)) return inside_region(region_, a);
+    double kept = 0;
+    for (const auto& run : clip_polyline(region_, {a, b}, false).runs)
+        for (std::size_t i = 1; i < run.size(); ++i) kept += (run[i] - run[i - 1]).norm();
+    return kept >= (b - a).norm() - 1e-4;
 }
 
 ClippedRuns RegionClip::operator()(const std::vector<Eigen::Vector2d>& line, bool closed) const {

@@ -55,11 +55,6 @@ std::vector<Polygon> region_difference(const std::vector<Polygon>& a,
 // p lies strictly inside the region (read even-odd); a point on its edge may go either way.
 bool inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& p);
 
-// The whole segment a-b lies in the region (up to 1e-4 mm of it outside): a chord across a bend
-// of the region's edge does not, though both ends and its middle may be inside.
-bool segment_inside_region(const std::vector<Polygon>& region, const Eigen::Vector2d& a,
-                           const Eigen::Vector2d& b);
-
 // The runs of the polyline `line` [mm] inside `region`, in the order and direction they come
 // along it; for a closed line the run through its first point is one run. A closed line wholly
 // inside comes back as the one run with `closed_inside` set. Points are rounded to 1e-5 mm.
@@ -77,6 +72,10 @@ class RegionClip {
   public:
     explicit RegionClip(std::vector<Polygon> region);
     ClippedRuns operator()(const std::vector<Eigen::Vector2d>& line, bool closed) const;
+
+    // The whole segment a-b lies in the region (up to 1e-4 mm of it outside): a chord across a
+    // bend of the region's edge does not, though both ends and its middle may be inside.
+    bool holds_segment(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
 
   private:
     bool meets_outline(const std::vector<Eigen::Vector2d>& line, bool closed) const;

@@ -126,11 +126,11 @@ TEST(RegionClipping, ARegionClipGivesClipPolylinesRunsForEveryLine) {
         }
     }
     // Segments: a chord across the hole is not inside, one beside it is, a point always is.
-    EXPECT_FALSE(segment_inside_region(region, {5, 10}, {25, 10}));
-    EXPECT_TRUE(segment_inside_region(region, {5, 2}, {25, 2}));
-    EXPECT_FALSE(segment_inside_region(region, {25, 2}, {35, 2}));
-    EXPECT_TRUE(segment_inside_region(region, {25, 2}, {30, 2}));  // ends on the edge
-    EXPECT_TRUE(segment_inside_region(region, {50, 50}, {50, 50}));
+    EXPECT_FALSE(clip.holds_segment({5, 10}, {25, 10}));
+    EXPECT_TRUE(clip.holds_segment({5, 2}, {25, 2}));
+    EXPECT_FALSE(clip.holds_segment({25, 2}, {35, 2}));
+    EXPECT_TRUE(clip.holds_segment({25, 2}, {30, 2}));  // ends on the edge
+    EXPECT_TRUE(clip.holds_segment({50, 50}, {50, 50}));
 }
 
 }  // namespace
