@@ -67,11 +67,10 @@ class SegmentGrid {
     // visited more than once).
     template <class Visit>
     void around(const Eigen::Vector2d& p, Visit visit) const {
-        const auto [cx, cy] = cell_of(p);
-        for (long x = cx - 1; x <= cx + 1; ++x)
-            for (long y = cy - 1; y <= cy + 1; ++y)
-                if (auto it = cells_.find(key(x, y)); it != cells_.end())
-                    for (int id : it->second) visit(segments_[id]);
+        any_around(p, [&](const TaggedSegment& s) {
+            visit(s);
+            return false;
+        });
     }
 
     // Whether near(segment) holds for any segment in the 3 x 3 cells around p: stops at the
